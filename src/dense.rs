@@ -1,0 +1,145 @@
+//! `DenseScene`: one byte per voxel in one flat array, walked cell by cell
+//! with Amanatides & Woo's traversal. The honest, simple baseline.
+
+use glam::IVec3;
+
+use crate::geom::{Hit, IAabb, Ray};
+use crate::scene::{Scene, Traced};
+use crate::voxel::{Palette, VoxelSource};
+use crate::walk::Walk;
+use crate::Error;
+
+/// A dense voxel volume: one material byte per position of its bounds.
+///
+/// `B` is the storage: `&[u8]` for a caller's buffer
+/// ([`DenseScene::build_in`]) or `Vec<u8>` under `alloc`
+/// ([`DenseScene::build`]).
+///
+/// # Guarantees
+/// `cells.len()` equals the volume of `bounds`, laid out x fastest, then y,
+/// then z; bounds are non-empty and within [`crate::MAX_COORD`].
+#[derive(Clone, Debug)]
+pub struct DenseScene<B> {
+    bounds: IAabb,
+    cells: B,
+    palette: Palette,
+}
+
+impl DenseScene<()> {
+    /// Bytes (one per voxel) a dense scene over `bounds` needs.
+    pub fn required_len(bounds: IAabb) -> Result<usize, Error> {
+        bounds.validate()?;
+        bounds.volume()
+    }
+}
+
+impl<'a> DenseScene<&'a [u8]> {
+    /// Builds the scene into `buf`, which must hold at least
+    /// [`DenseScene::required_len`] bytes (the rest is left alone).
+    /// Allocates nothing.
+    pub fn build_in<S: VoxelSource + ?Sized>(
+        source: &S,
+        bounds: IAabb,
+        buf: &'a mut [u8],
+    ) -> Result<Self, Error> {
+        let len = DenseScene::required_len(bounds)?;
+        let actual = buf.len();
+        let cells = buf.get_mut(..len).ok_or(Error::BufferTooSmall {
+            required: len,
+            actual,
+        })?;
+        source.fill_box(bounds, cells);
+        Ok(Self {
+            bounds,
+            cells,
+            palette: source.palette().clone(),
+        })
+    }
+}
+
+#[cfg(feature = "alloc")]
+impl DenseScene<alloc::vec::Vec<u8>> {
+    /// Builds the scene in a new vector, reserved with `try_reserve`: a volume
+    /// too large for memory is [`Error::OutOfMemory`], never an abort.
+    pub fn build<S: VoxelSource + ?Sized>(source: &S, bounds: IAabb) -> Result<Self, Error> {
+        let len = DenseScene::required_len(bounds)?;
+        let mut cells = crate::storage::try_vec::<u8>(len)?;
+        cells.resize(len, 0);
+        source.fill_box(bounds, &mut cells);
+        Ok(Self {
+            bounds,
+            cells,
+            palette: source.palette().clone(),
+        })
+    }
+}
+
+impl<B: AsRef<[u8]>> DenseScene<B> {
+    /// Index of `pos` in the flat array; `pos` must be inside the bounds.
+    #[inline]
+    fn index(&self, pos: IVec3) -> usize {
+        let local = (pos - self.bounds.min).as_uvec3();
+        let size = self.bounds.size().as_uvec3();
+        local.x as usize + size.x as usize * (local.y as usize + size.y as usize * local.z as usize)
+    }
+
+    /// The material at `pos` (0 for empty or outside the bounds).
+    #[must_use]
+    pub fn material(&self, pos: IVec3) -> u8 {
+        if self.bounds.contains(pos) {
+            self.cells.as_ref()[self.index(pos)]
+        } else {
+            0
+        }
+    }
+
+    /// The palette the materials refer to.
+    #[must_use]
+    pub fn palette(&self) -> &Palette {
+        &self.palette
+    }
+}
+
+impl<B: AsRef<[u8]>> Scene for DenseScene<B> {
+    fn bounds(&self) -> IAabb {
+        self.bounds
+    }
+
+    fn trace_counted(&self, ray: &Ray) -> Traced {
+        let Some(mut walk) = Walk::start(ray, &self.bounds) else {
+            return Traced {
+                hit: None,
+                steps: 0,
+            };
+        };
+        let cells = self.cells.as_ref();
+        loop {
+            let pos = walk.cell();
+            let material = cells[self.index(pos)];
+            if material != 0 {
+                let (face, t) = walk.entry();
+                let hit = self.palette.voxel(material).map(|voxel| Hit {
+                    pos,
+                    face,
+                    t,
+                    material,
+                    voxel,
+                });
+                return Traced {
+                    hit,
+                    steps: walk.steps(),
+                };
+            }
+            if !walk.step() {
+                return Traced {
+                    hit: None,
+                    steps: walk.steps(),
+                };
+            }
+        }
+    }
+
+    fn storage_bytes(&self) -> usize {
+        self.cells.as_ref().len() + core::mem::size_of::<Palette>()
+    }
+}

@@ -1,0 +1,77 @@
+//! The crate's one error type.
+
+use core::fmt;
+
+/// Everything that can go wrong in voxtrace, as one `Copy` value.
+///
+/// Input is checked where a value is constructed (a camera, a ray, a
+/// storage), so the hot paths (`trace`, `render_row`) cannot fail.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Error {
+    /// A box, image or buffer with a zero dimension.
+    ZeroSize,
+    /// A size whose element or byte count does not fit in `usize`.
+    SizeOverflow,
+    /// A volume whose coordinates leave the supported range
+    /// `[-MAX_COORD, MAX_COORD]` (see [`crate::MAX_COORD`]).
+    ExtentTooLarge {
+        /// The largest supported absolute coordinate.
+        max: i32,
+    },
+    /// A caller-provided buffer is shorter than the operation needs.
+    BufferTooSmall {
+        /// Elements needed.
+        required: usize,
+        /// Elements given.
+        actual: usize,
+    },
+    /// An allocation was refused; nothing was built.
+    OutOfMemory {
+        /// Bytes that were requested.
+        bytes: usize,
+    },
+    /// The camera parameters cannot produce rays; the reason names the bad one.
+    InvalidCamera {
+        /// Which parameter is wrong and why.
+        reason: &'static str,
+    },
+    /// A ray with a non-finite origin, or a zero or non-finite direction.
+    InvalidRay,
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Error::ZeroSize => f.write_str("size must be non-zero in every dimension"),
+            Error::SizeOverflow => f.write_str("size overflows the address space"),
+            Error::ExtentTooLarge { max } => {
+                write!(f, "volume coordinates must lie within [-{max}, {max}]")
+            }
+            Error::BufferTooSmall { required, actual } => {
+                write!(
+                    f,
+                    "buffer too small: {required} elements needed, {actual} given"
+                )
+            }
+            Error::OutOfMemory { bytes } => {
+                write!(f, "out of memory: could not allocate {bytes} bytes")
+            }
+            Error::InvalidCamera { reason } => write!(f, "invalid camera: {reason}"),
+            Error::InvalidRay => {
+                f.write_str("invalid ray: origin must be finite, direction finite and non-zero")
+            }
+        }
+    }
+}
+
+impl core::error::Error for Error {}
+
+#[cfg(feature = "alloc")]
+impl From<alloc::collections::TryReserveError> for Error {
+    /// The requested byte count is not exposed by `TryReserveError`; callers
+    /// that know it use [`Error::OutOfMemory`] directly (see `storage::try_vec`).
+    fn from(_: alloc::collections::TryReserveError) -> Self {
+        Error::OutOfMemory { bytes: usize::MAX }
+    }
+}

@@ -1,0 +1,235 @@
+//! Rays, integer boxes, faces and hits.
+
+use glam::{IVec3, Vec3};
+
+use crate::math::sqrt32;
+use crate::voxel::Voxel;
+use crate::Error;
+
+/// The largest absolute voxel coordinate a volume may use.
+///
+/// Every plane coordinate in `[-2^23, 2^23]` is an exact `f32`, which the
+/// traversal relies on: plane crossings are computed from exact plane values.
+pub const MAX_COORD: i32 = 1 << 22;
+
+/// An axis-aligned box of voxel positions, half-open: `min <= p < max`.
+///
+/// The voxel at position `p` occupies the unit cube `[p, p + 1)`, so the box
+/// covers the space `[min, max)` exactly.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct IAabb {
+    /// Smallest position inside the box.
+    pub min: IVec3,
+    /// One past the largest position inside the box, per axis.
+    pub max: IVec3,
+}
+
+impl IAabb {
+    /// The box `[min, max)`.
+    #[must_use]
+    pub const fn new(min: IVec3, max: IVec3) -> Self {
+        Self { min, max }
+    }
+
+    /// The cube `[-n, n)^3` that the seed paper calls a scene of size `n`.
+    #[must_use]
+    pub const fn centered(n: i32) -> Self {
+        Self::new(IVec3::splat(-n), IVec3::splat(n))
+    }
+
+    /// Side lengths; non-positive components mean the box is empty.
+    #[must_use]
+    pub fn size(&self) -> IVec3 {
+        self.max - self.min
+    }
+
+    /// True when the box has no position in it.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        let s = self.size();
+        s.x <= 0 || s.y <= 0 || s.z <= 0
+    }
+
+    /// Number of positions, with overflow reported instead of wrapped.
+    pub fn volume(&self) -> Result<usize, Error> {
+        if self.is_empty() {
+            return Err(Error::ZeroSize);
+        }
+        let s = self.size();
+        (s.x as usize)
+            .checked_mul(s.y as usize)
+            .and_then(|v| v.checked_mul(s.z as usize))
+            .ok_or(Error::SizeOverflow)
+    }
+
+    /// Checks the box is non-empty and inside `[-MAX_COORD, MAX_COORD]`.
+    pub fn validate(&self) -> Result<(), Error> {
+        if self.is_empty() {
+            return Err(Error::ZeroSize);
+        }
+        let inside = |v: IVec3| v.abs().max_element() <= MAX_COORD;
+        if inside(self.min) && inside(self.max) {
+            Ok(())
+        } else {
+            Err(Error::ExtentTooLarge { max: MAX_COORD })
+        }
+    }
+
+    /// True when `p` is inside the box.
+    #[must_use]
+    pub fn contains(&self, p: IVec3) -> bool {
+        p.cmpge(self.min).all() && p.cmplt(self.max).all()
+    }
+
+    /// The overlap of two boxes (possibly empty).
+    #[must_use]
+    pub fn intersect(&self, other: &IAabb) -> IAabb {
+        IAabb::new(self.min.max(other.min), self.max.min(other.max))
+    }
+
+    /// Every position in the box, x fastest, then y, then z: the order in
+    /// which [`crate::VoxelSource::fill_box`] writes its output.
+    pub fn iter(&self) -> impl Iterator<Item = IVec3> + '_ {
+        let empty = self.is_empty();
+        let (lo, hi) = (self.min, self.max);
+        (lo.z..if empty { lo.z } else { hi.z }).flat_map(move |z| {
+            (lo.y..hi.y).flat_map(move |y| (lo.x..hi.x).map(move |x| IVec3::new(x, y, z)))
+        })
+    }
+}
+
+/// A ray with a finite origin and a unit-length direction.
+///
+/// # Guarantees
+/// The origin is finite; the direction is finite with length 1 (to rounding)
+/// and at least one non-zero component. The reciprocal direction is stored
+/// so traversal computes every plane crossing as `(plane - origin) * inv_dir`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray {
+    origin: Vec3,
+    dir: Vec3,
+    inv_dir: Vec3,
+}
+
+impl Ray {
+    /// A ray from `origin` along `dir`, which is normalized here.
+    ///
+    /// Fails with [`Error::InvalidRay`] when the origin is not finite or the
+    /// direction is zero or not finite. Huge and subnormal directions are
+    /// fine: the direction is first divided by its largest component, so
+    /// the length never overflows or underflows.
+    pub fn new(origin: Vec3, dir: Vec3) -> Result<Self, Error> {
+        if !origin.is_finite() || !dir.is_finite() {
+            return Err(Error::InvalidRay);
+        }
+        let largest = dir.abs().max_element();
+        if largest == 0.0 {
+            return Err(Error::InvalidRay);
+        }
+        let scaled = dir / largest;
+        let dir = scaled / sqrt32(scaled.dot(scaled));
+        Ok(Self {
+            origin,
+            dir,
+            inv_dir: Vec3::ONE / dir,
+        })
+    }
+
+    /// Where the ray starts.
+    #[must_use]
+    pub fn origin(&self) -> Vec3 {
+        self.origin
+    }
+
+    /// The unit direction.
+    #[must_use]
+    pub fn dir(&self) -> Vec3 {
+        self.dir
+    }
+
+    /// `1 / dir` per component (infinite where the component is zero).
+    #[must_use]
+    pub fn inv_dir(&self) -> Vec3 {
+        self.inv_dir
+    }
+
+    /// The point at distance `t` along the ray.
+    #[must_use]
+    pub fn at(&self, t: f32) -> Vec3 {
+        self.origin + self.dir * t
+    }
+}
+
+/// One of the six faces of a voxel, named by its outward normal.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Face {
+    /// Normal -x.
+    NegX,
+    /// Normal +x.
+    PosX,
+    /// Normal -y.
+    NegY,
+    /// Normal +y (the top of a terrain column).
+    PosY,
+    /// Normal -z.
+    NegZ,
+    /// Normal +z.
+    PosZ,
+}
+
+impl Face {
+    /// The face a ray enters through when it crosses a plane of `axis`
+    /// (0, 1, 2) while moving in the positive (`positive = true`) or
+    /// negative direction: entering from below means the -axis face.
+    #[must_use]
+    pub fn entered(axis: usize, positive: bool) -> Face {
+        match (axis, positive) {
+            (0, true) => Face::NegX,
+            (0, false) => Face::PosX,
+            (1, true) => Face::NegY,
+            (1, false) => Face::PosY,
+            (_, true) => Face::NegZ,
+            (_, false) => Face::PosZ,
+        }
+    }
+
+    /// The axis the face is perpendicular to: 0, 1 or 2.
+    #[must_use]
+    pub fn axis(self) -> usize {
+        match self {
+            Face::NegX | Face::PosX => 0,
+            Face::NegY | Face::PosY => 1,
+            Face::NegZ | Face::PosZ => 2,
+        }
+    }
+
+    /// The outward unit normal as integers.
+    #[must_use]
+    pub fn normal(self) -> IVec3 {
+        match self {
+            Face::NegX => IVec3::NEG_X,
+            Face::PosX => IVec3::X,
+            Face::NegY => IVec3::NEG_Y,
+            Face::PosY => IVec3::Y,
+            Face::NegZ => IVec3::NEG_Z,
+            Face::PosZ => IVec3::Z,
+        }
+    }
+}
+
+/// The first solid voxel along a ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// The voxel's position.
+    pub pos: IVec3,
+    /// The face the ray entered through; `None` when the ray starts strictly
+    /// inside the voxel (then `t` is 0).
+    pub face: Option<Face>,
+    /// Distance along the unit direction to the entry point, `>= 0`, never
+    /// `-0.0`, computed as one plane crossing `(plane - origin) * inv_dir`.
+    pub t: f32,
+    /// The voxel's palette index (never 0, which means empty).
+    pub material: u8,
+    /// The voxel itself.
+    pub voxel: Voxel,
+}

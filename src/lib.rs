@@ -1,0 +1,83 @@
+//! # voxtrace
+//!
+//! A lightweight CPU voxel ray tracer with swappable storage: a dense flat
+//! array walked by Amanatides & Woo's traversal ([`DenseScene`]) and a sparse,
+//! pointer-free octree ([`OctreeScene`]). Both implement [`Scene`] and return
+//! the same hit for every ray, bit for bit, because they share one cell walk
+//! with one tie rule (x before y before z) and the octree only jumps over
+//! boxes it knows are empty.
+//!
+//! The core is `#![no_std]` and allocation-explicit: storages build into
+//! caller buffers (`build_in`, sized by `required_len`), or under the `alloc`
+//! feature into vectors reserved with `try_reserve` (`build`); the tracer
+//! allocates nothing.
+//!
+//! ```
+//! use voxtrace::{render, Camera, CameraSettings, IAabb, OctreeScene, RenderOptions, VoxelGenerator};
+//!
+//! let terrain = VoxelGenerator::new(42);
+//! let scene = OctreeScene::build(&terrain, IAabb::centered(32))?;
+//! let camera = Camera::new(CameraSettings {
+//!     width: 64,
+//!     height: 36,
+//!     lookfrom: glam::Vec3::splat(22.0),
+//!     ..CameraSettings::default()
+//! })?;
+//! let mut pixels = vec![0u32; 64 * 36];
+//! let stats = render(&scene, &camera, &RenderOptions::default(), &mut pixels)?;
+//! assert_eq!(stats.primary_rays, 64 * 36);
+//! # Ok::<(), voxtrace::Error>(())
+//! ```
+//!
+//! ## Features
+//! - `alloc`: storage constructors that allocate (fallibly).
+//! - `std` (default): `std::error::Error` and the std-only pieces; implies `alloc`.
+//! - `png` (default): PNG encoding of frames; implies `std`.
+
+#![no_std]
+#![deny(missing_docs, unsafe_code)]
+#![warn(clippy::std_instead_of_core, clippy::alloc_instead_of_core)]
+
+#[cfg(feature = "alloc")]
+extern crate alloc;
+#[cfg(feature = "std")]
+extern crate std;
+
+mod camera;
+mod dense;
+mod error;
+mod geom;
+mod math;
+mod noise;
+mod octree;
+mod octree_build;
+mod render;
+mod scene;
+mod shade;
+#[cfg(feature = "alloc")]
+mod storage;
+mod terrain;
+mod voxel;
+mod walk;
+
+#[cfg(feature = "png")]
+mod image_out;
+
+pub use camera::{Camera, CameraSettings, DEFAULT_FOV};
+pub use dense::DenseScene;
+pub use error::Error;
+pub use geom::{Face, Hit, IAabb, Ray, MAX_COORD};
+pub use noise::{Perlin, SplitMix64};
+pub use octree::{Node, OctreeLen, OctreeScene};
+pub use render::{render, render_region, render_span, RayStats, Rect};
+pub use scene::{Scene, Traced};
+pub use shade::{pack, shade, sky, unpack, RenderOptions, FLAT_SKY};
+pub use terrain::{VoxelGenerator, GRASS, HEIGHT, MOUNTAIN, ROUGHNESS, SCALE, SNOW, WATER};
+pub use voxel::{FnSource, Palette, Region, Voxel, VoxelSource};
+pub use walk::max_steps;
+
+#[cfg(feature = "png")]
+pub use image_out::{encode_png, write_png};
+
+/// Re-export of the math types in voxtrace's API.
+pub use glam;

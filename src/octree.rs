@@ -1,0 +1,236 @@
+//! `OctreeScene`: a sparse, pointer-free octree. All nodes live in one slice
+//! and address their children by `u32` index; leaves are 4x4x4 bricks held as
+//! one 64-bit occupancy mask.
+//!
+//! The traversal is the shared cell walk (see `walk.rs`), which the octree
+//! speeds up by jumping over every empty node in one move. Because a jump
+//! lands exactly where single steps would, the octree returns the same hits
+//! as the dense array, bit for bit.
+
+use glam::IVec3;
+
+use crate::geom::{Hit, IAabb, Ray};
+use crate::scene::{Scene, Traced};
+use crate::voxel::Palette;
+use crate::walk::Walk;
+
+/// Side of a leaf brick: 4x4x4 voxels, one `u64` of occupancy.
+pub(crate) const BRICK: i32 = 4;
+
+/// Bit of local brick position `(x, y, z)` in `0..4`: `x | y << 2 | z << 4`.
+#[inline]
+pub(crate) fn brick_bit(local: IVec3) -> u32 {
+    (local.x | local.y << 2 | local.z << 4) as u32
+}
+
+/// Index of a child octant: `x | y << 1 | z << 2`, each bit set for the upper
+/// half of that axis. Children are stored in this order.
+#[inline]
+pub(crate) fn octant(upper: glam::BVec3) -> u32 {
+    u32::from(upper.x) | u32::from(upper.y) << 1 | u32::from(upper.z) << 2
+}
+
+/// How a brick stores the materials of its solid voxels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum BrickMaterials {
+    /// Every solid voxel has this material.
+    Uniform(u8),
+    /// `popcount(occupancy)` materials, in bit order, from this offset in the
+    /// material slice.
+    Packed(u32),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum NodeKind {
+    /// Children with bit `octant` set in `children` are non-empty and stored
+    /// contiguously from `first`, in octant order; the rest are empty.
+    Branch { children: u8, first: u32 },
+    /// The whole node is solid with one material.
+    Solid(u8),
+    /// A 4x4x4 leaf.
+    Brick {
+        occupancy: u64,
+        materials: BrickMaterials,
+    },
+}
+
+/// One octree node (16 bytes). Opaque: nodes are written only by the
+/// builders; the public type exists so callers can provide node buffers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Node(pub(crate) NodeKind);
+
+impl Node {
+    /// A placeholder to initialize node buffers with (an empty branch).
+    pub const EMPTY: Node = Node(NodeKind::Branch {
+        children: 0,
+        first: 0,
+    });
+}
+
+const _: () = assert!(core::mem::size_of::<Node>() == 16);
+
+/// How many nodes and material bytes an octree needs
+/// ([`OctreeScene::required_len`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct OctreeLen {
+    /// Elements of the node slice.
+    pub nodes: usize,
+    /// Bytes of the material slice.
+    pub materials: usize,
+}
+
+/// A sparse octree over a volume.
+///
+/// `N` and `M` are the node and material storage: borrowed slices from
+/// [`OctreeScene::build_in`], vectors from [`OctreeScene::build`] (`alloc`).
+///
+/// # Guarantees
+/// The root cube starts at `bounds.min` and has a power-of-two side of at
+/// least 4 covering the bounds; every child index and material offset points
+/// inside its slice; positions outside the bounds are empty.
+#[derive(Clone, Debug)]
+pub struct OctreeScene<N, M> {
+    pub(crate) bounds: IAabb,
+    pub(crate) root: Node,
+    pub(crate) root_size: i32,
+    pub(crate) nodes: N,
+    pub(crate) materials: M,
+    pub(crate) palette: Palette,
+}
+
+/// What a lookup found at a cell.
+enum Probe {
+    Solid(u8),
+    /// The cell lies in this empty cube.
+    Empty {
+        corner: IVec3,
+        size: i32,
+    },
+}
+
+impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
+    /// The deepest node holding `cell` (inside the root cube).
+    #[inline]
+    fn probe(&self, cell: IVec3) -> Probe {
+        let nodes = self.nodes.as_ref();
+        let mut node = self.root;
+        let mut corner = self.bounds.min;
+        let mut size = self.root_size;
+        loop {
+            match node.0 {
+                NodeKind::Branch { children, first } => {
+                    size >>= 1;
+                    let upper = (cell - corner).cmpge(IVec3::splat(size));
+                    corner += IVec3::from(upper).min(IVec3::ONE) * size;
+                    let i = octant(upper);
+                    if children & (1 << i) == 0 {
+                        return Probe::Empty { corner, size };
+                    }
+                    let rank = (u32::from(children) & ((1 << i) - 1)).count_ones();
+                    node = nodes[(first + rank) as usize];
+                }
+                NodeKind::Solid(material) => return Probe::Solid(material),
+                NodeKind::Brick {
+                    occupancy,
+                    materials,
+                } => {
+                    let bit = brick_bit(cell - corner);
+                    if occupancy >> bit & 1 == 0 {
+                        return Probe::Empty {
+                            corner: cell,
+                            size: 1,
+                        };
+                    }
+                    return Probe::Solid(match materials {
+                        BrickMaterials::Uniform(m) => m,
+                        BrickMaterials::Packed(offset) => {
+                            let rank = (occupancy & ((1u64 << bit) - 1)).count_ones();
+                            self.materials.as_ref()[(offset + rank) as usize]
+                        }
+                    });
+                }
+            }
+        }
+    }
+
+    /// The material at `pos` (0 for empty or outside the bounds).
+    #[must_use]
+    pub fn material(&self, pos: IVec3) -> u8 {
+        if !self.bounds.contains(pos) {
+            return 0;
+        }
+        match self.probe(pos) {
+            Probe::Solid(m) => m,
+            Probe::Empty { .. } => 0,
+        }
+    }
+
+    /// The palette the materials refer to.
+    #[must_use]
+    pub fn palette(&self) -> &Palette {
+        &self.palette
+    }
+
+    /// Node and material counts in use.
+    #[must_use]
+    pub fn len(&self) -> OctreeLen {
+        OctreeLen {
+            nodes: self.nodes.as_ref().len(),
+            materials: self.materials.as_ref().len(),
+        }
+    }
+
+    /// True when the volume holds no solid voxel.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        matches!(self.root.0, NodeKind::Branch { children: 0, .. })
+    }
+}
+
+impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
+    fn bounds(&self) -> IAabb {
+        self.bounds
+    }
+
+    fn trace_counted(&self, ray: &Ray) -> Traced {
+        let Some(mut walk) = Walk::start(ray, &self.bounds) else {
+            return Traced {
+                hit: None,
+                steps: 0,
+            };
+        };
+        loop {
+            let moved = match self.probe(walk.cell()) {
+                Probe::Solid(material) => {
+                    let (face, t) = walk.entry();
+                    let hit = self.palette.voxel(material).map(|voxel| Hit {
+                        pos: walk.cell(),
+                        face,
+                        t,
+                        material,
+                        voxel,
+                    });
+                    return Traced {
+                        hit,
+                        steps: walk.steps(),
+                    };
+                }
+                Probe::Empty { size: 1, .. } => walk.step(),
+                Probe::Empty { corner, size } => walk.leave(corner, size),
+            };
+            if !moved {
+                return Traced {
+                    hit: None,
+                    steps: walk.steps(),
+                };
+            }
+        }
+    }
+
+    fn storage_bytes(&self) -> usize {
+        core::mem::size_of_val(self.nodes.as_ref())
+            + self.materials.as_ref().len()
+            + core::mem::size_of::<Palette>()
+            + core::mem::size_of::<Node>()
+    }
+}

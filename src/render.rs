@@ -1,0 +1,146 @@
+//! The scalar tracer: renders rows of pixels into a caller's `&mut [u32]`.
+//!
+//! One unit of work, [`render_span`], renders a run of pixels of one row; the
+//! full frame, crops, and the threaded renderer are all made of it, so they
+//! cannot disagree.
+
+use crate::camera::Camera;
+use crate::scene::Scene;
+use crate::shade::{pack, shade, RenderOptions};
+use crate::Error;
+
+/// Rays traced for a frame or part of one, by kind.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct RayStats {
+    /// Camera rays (one per pixel sample).
+    pub primary_rays: u64,
+    /// Camera rays that hit a voxel.
+    pub primary_hits: u64,
+}
+
+impl core::ops::AddAssign for RayStats {
+    fn add_assign(&mut self, rhs: Self) {
+        self.primary_rays += rhs.primary_rays;
+        self.primary_hits += rhs.primary_hits;
+    }
+}
+
+impl core::ops::Add for RayStats {
+    type Output = RayStats;
+    fn add(mut self, rhs: Self) -> RayStats {
+        self += rhs;
+        self
+    }
+}
+
+/// A rectangle of pixels of a frame: columns `x..x + width`, rows
+/// `y..y + height`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Rect {
+    /// First column.
+    pub x: u32,
+    /// First row.
+    pub y: u32,
+    /// Columns.
+    pub width: u32,
+    /// Rows.
+    pub height: u32,
+}
+
+impl Rect {
+    /// The whole frame of `camera`.
+    #[must_use]
+    pub fn full(camera: &Camera) -> Rect {
+        Rect {
+            x: 0,
+            y: 0,
+            width: camera.width(),
+            height: camera.height(),
+        }
+    }
+
+    /// Pixels in the rectangle.
+    pub fn area(&self) -> Result<usize, Error> {
+        (self.width as usize)
+            .checked_mul(self.height as usize)
+            .ok_or(Error::SizeOverflow)
+    }
+
+    /// Checks the rectangle is non-empty and inside `camera`'s frame.
+    pub fn validate(&self, camera: &Camera) -> Result<(), Error> {
+        if self.width == 0 || self.height == 0 {
+            return Err(Error::ZeroSize);
+        }
+        let fits = |start: u32, len: u32, total: u32| {
+            start.checked_add(len).is_some_and(|end| end <= total)
+        };
+        if fits(self.x, self.width, camera.width()) && fits(self.y, self.height, camera.height()) {
+            Ok(())
+        } else {
+            Err(Error::InvalidCamera {
+                reason: "region lies outside the frame",
+            })
+        }
+    }
+}
+
+/// Renders pixels `(x0 + i, y)` for every `i` in `0..out.len()` into `out`.
+///
+/// The caller keeps the pixels inside the frame. Allocates nothing.
+pub fn render_span<S: Scene + ?Sized>(
+    scene: &S,
+    camera: &Camera,
+    options: &RenderOptions,
+    x0: u32,
+    y: u32,
+    out: &mut [u32],
+) -> RayStats {
+    let mut stats = RayStats::default();
+    for (x, pixel) in (x0..).zip(out.iter_mut()) {
+        let ray = camera.get_ray(x, y);
+        let hit = scene.trace(&ray);
+        stats.primary_rays += 1;
+        stats.primary_hits += u64::from(hit.is_some());
+        *pixel = pack(shade(hit.as_ref(), &ray, options));
+    }
+    stats
+}
+
+/// Renders the crop `region` of the frame into `out`, row-major with stride
+/// `region.width`: byte-identical to the same pixels of a full render.
+///
+/// `out` needs at least `region.width * region.height` elements; the rest is
+/// left alone. Single-threaded; allocates nothing.
+pub fn render_region<S: Scene + ?Sized>(
+    scene: &S,
+    camera: &Camera,
+    options: &RenderOptions,
+    region: Rect,
+    out: &mut [u32],
+) -> Result<RayStats, Error> {
+    region.validate(camera)?;
+    let required = region.area()?;
+    if out.len() < required {
+        return Err(Error::BufferTooSmall {
+            required,
+            actual: out.len(),
+        });
+    }
+    let mut stats = RayStats::default();
+    let rows = out[..required].chunks_exact_mut(region.width as usize);
+    for (y, row) in (region.y..).zip(rows) {
+        stats += render_span(scene, camera, options, region.x, y, row);
+    }
+    Ok(stats)
+}
+
+/// Renders the whole frame into `out` (row-major, `width * height` RGBA8
+/// pixels, R in the first byte). Single-threaded; allocates nothing.
+pub fn render<S: Scene + ?Sized>(
+    scene: &S,
+    camera: &Camera,
+    options: &RenderOptions,
+    out: &mut [u32],
+) -> Result<RayStats, Error> {
+    render_region(scene, camera, options, Rect::full(camera), out)
+}

@@ -1,0 +1,51 @@
+//! The `Scene` trait: what the tracer needs from a storage.
+
+use crate::geom::{Hit, IAabb, Ray};
+
+/// A hit (or miss) together with the number of walk moves it took.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Traced {
+    /// The first solid voxel along the ray, if any.
+    pub hit: Option<Hit>,
+    /// Walk moves (single steps and empty-box jumps) taken; never more than
+    /// [`crate::max_steps`] of the scene's bounds.
+    pub steps: u32,
+}
+
+/// A voxel storage the tracer can shoot rays into.
+///
+/// # Guarantees
+/// Every implementation in this crate returns, for every ray, the hit the
+/// shared cell walk defines (see the crate docs): the same voxel, face and
+/// `t`, bit for bit, whatever the storage. Tracing never allocates, never
+/// panics, and takes at most [`crate::max_steps`] moves.
+pub trait Scene {
+    /// The volume the scene covers; nothing outside it is ever hit.
+    fn bounds(&self) -> IAabb;
+
+    /// The first solid voxel along `ray`, with the walk's move count.
+    fn trace_counted(&self, ray: &Ray) -> Traced;
+
+    /// The first solid voxel along `ray`.
+    #[inline]
+    fn trace(&self, ray: &Ray) -> Option<Hit> {
+        self.trace_counted(ray).hit
+    }
+
+    /// Bytes of voxel storage this scene holds (arrays and palette).
+    fn storage_bytes(&self) -> usize;
+}
+
+impl<S: Scene + ?Sized> Scene for &S {
+    fn bounds(&self) -> IAabb {
+        (**self).bounds()
+    }
+
+    fn trace_counted(&self, ray: &Ray) -> Traced {
+        (**self).trace_counted(ray)
+    }
+
+    fn storage_bytes(&self) -> usize {
+        (**self).storage_bytes()
+    }
+}

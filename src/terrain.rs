@@ -1,0 +1,142 @@
+//! The seed paper's procedural terrain: a Perlin height field in `[0, HEIGHT]`
+//! with four color bands.
+
+use glam::{IVec3, U8Vec3};
+
+use crate::geom::IAabb;
+use crate::noise::Perlin;
+use crate::voxel::{Palette, Region, Voxel, VoxelSource};
+
+/// Maximum terrain height in voxels (the seed paper's height limit of 100).
+pub const HEIGHT: i32 = 100;
+/// How many noise features span one `HEIGHT` of horizontal distance.
+pub const ROUGHNESS: f64 = 1.5;
+/// Noise frequency per voxel: roughness normalized by height, so hills keep
+/// their proportions if `HEIGHT` changes.
+pub const SCALE: f64 = ROUGHNESS / HEIGHT as f64;
+
+/// Material of the water band (heights below 20% of `HEIGHT`).
+pub const WATER: u8 = 1;
+/// Material of the grass band (20% to 60%).
+pub const GRASS: u8 = 2;
+/// Material of the mountain band (60% to 85%).
+pub const MOUNTAIN: u8 = 3;
+/// Material of the snow band (85% and above).
+pub const SNOW: u8 = 4;
+
+const BAND_COLORS: [U8Vec3; 4] = [
+    U8Vec3::new(46, 98, 184),   // water
+    U8Vec3::new(84, 160, 64),   // grass
+    U8Vec3::new(122, 106, 92),  // mountain
+    U8Vec3::new(236, 240, 244), // snow
+];
+
+/// Procedural terrain from seeded Perlin noise: everything at or below the
+/// height of its `(x, z)` column is solid.
+///
+/// # Guarantees
+/// The same seed gives the same terrain on every target. Heights lie in
+/// `[0, HEIGHT]`, so every voxel with `y <= 0` is solid and every voxel with
+/// `y > HEIGHT` is empty, whatever the seed.
+#[derive(Clone, Debug)]
+pub struct VoxelGenerator {
+    perlin: Perlin,
+    palette: Palette,
+}
+
+impl VoxelGenerator {
+    /// Terrain for `seed`.
+    #[must_use]
+    pub fn new(seed: u64) -> Self {
+        Self {
+            perlin: Perlin::new(seed),
+            palette: Palette::new(&BAND_COLORS),
+        }
+    }
+
+    /// Terrain height of column `(x, z)`, in `[0, HEIGHT]`.
+    #[must_use]
+    pub fn height(&self, x: i32, z: i32) -> i32 {
+        let n = self.perlin.get(f64::from(x) * SCALE, f64::from(z) * SCALE);
+        // [-1, 1] -> [0, HEIGHT]; `as` truncates toward zero, which is floor
+        // here because the value is non-negative.
+        ((n + 1.0) * 0.5 * f64::from(HEIGHT)) as i32
+    }
+
+    /// The voxel at `pos`: `Some` when `pos.y` is at or below its column's
+    /// terrain height, colored by [`VoxelGenerator::height_to_color`].
+    #[must_use]
+    pub fn lookup(&self, pos: IVec3) -> Option<Voxel> {
+        (pos.y <= self.height(pos.x, pos.z)).then(|| Voxel {
+            color: self.height_to_color(pos.y),
+        })
+    }
+
+    /// One of four colors by height band: water, grass, mountain, snow.
+    #[must_use]
+    pub fn height_to_color(&self, y: i32) -> U8Vec3 {
+        self.palette.color(band(y))
+    }
+}
+
+/// Material of the band a height falls in.
+fn band(y: i32) -> u8 {
+    // Thresholds as integer fractions of HEIGHT: 20%, 60%, 85%.
+    let scaled = y * 100;
+    if scaled < 20 * HEIGHT {
+        WATER
+    } else if scaled < 60 * HEIGHT {
+        GRASS
+    } else if scaled < 85 * HEIGHT {
+        MOUNTAIN
+    } else {
+        SNOW
+    }
+}
+
+impl VoxelSource for VoxelGenerator {
+    fn palette(&self) -> &Palette {
+        &self.palette
+    }
+
+    fn material(&self, pos: IVec3) -> u8 {
+        if pos.y <= self.height(pos.x, pos.z) {
+            band(pos.y)
+        } else {
+            0
+        }
+    }
+
+    /// One noise evaluation per column, however tall the box.
+    fn fill_box(&self, region: IAabb, out: &mut [u8]) {
+        let size = region.size();
+        if region.is_empty() {
+            return;
+        }
+        let (sx, sy) = (size.x as usize, size.y as usize);
+        for (zi, z) in (region.min.z..region.max.z).enumerate() {
+            for (xi, x) in (region.min.x..region.max.x).enumerate() {
+                let h = self.height(x, z);
+                for (yi, y) in (region.min.y..region.max.y).enumerate() {
+                    let idx = xi + sx * (yi + sy * zi);
+                    if let Some(slot) = out.get_mut(idx) {
+                        *slot = if y <= h { band(y) } else { 0 };
+                    }
+                }
+            }
+        }
+    }
+
+    /// Above `HEIGHT` is empty; at or below 0 is solid, and one material when
+    /// the box stays in one color band.
+    fn classify(&self, region: IAabb) -> Region {
+        let (lo, hi) = (region.min.y, region.max.y - 1);
+        if lo > HEIGHT {
+            Region::Empty
+        } else if hi <= 0 && band(lo) == band(hi) {
+            Region::Solid(band(lo))
+        } else {
+            Region::Mixed
+        }
+    }
+}

@@ -1,0 +1,85 @@
+//! Invariant 1: for every ray, the dense array and the octree return the same
+//! hit (voxel, face, `t` bit for bit), and both equal the brute-force
+//! reference.
+
+mod common;
+
+use common::rays::{ray_for, Rng};
+use common::reference::{as_ref_hit, first_hit};
+use common::sources::speckle;
+use voxtrace::glam::IVec3;
+use voxtrace::{max_steps, DenseScene, IAabb, OctreeScene, Scene, VoxelGenerator, VoxelSource};
+
+fn assert_backends_agree<S: VoxelSource>(source: &S, bounds: IAabb, rays: usize, seed: u64) {
+    let dense = DenseScene::build(source, bounds).unwrap();
+    let octree = OctreeScene::build(source, bounds).unwrap();
+    let bound = max_steps(&bounds);
+    let mut rng = Rng::new(seed);
+    let mut hits = 0;
+    for i in 0..rays {
+        let ray = ray_for(&mut rng, &bounds);
+        let a = dense.trace_counted(&ray);
+        let b = octree.trace_counted(&ray);
+        assert_eq!(a.hit, b.hit, "ray {i}: {ray:?} in {bounds:?}");
+        if let Some(hit) = a.hit {
+            assert_eq!(hit.t.to_bits(), b.hit.unwrap().t.to_bits());
+            hits += 1;
+        }
+        assert!(
+            a.steps <= bound && b.steps <= bound,
+            "ray {i} took {} / {} > {bound} steps",
+            a.steps,
+            b.steps
+        );
+    }
+    // The generator must actually exercise hits and misses.
+    assert!(hits > rays / 10 && hits < rays, "{hits} hits of {rays}");
+}
+
+#[test]
+fn backends_agree_on_terrain_over_seeds_and_sizes() {
+    // Sizes around the terrain's height band, so surfaces are in view.
+    for (seed, n) in [(1u64, 8), (2, 20), (3, 33), (7, 50)] {
+        let terrain = VoxelGenerator::new(seed);
+        let bounds = IAabb::new(IVec3::new(-n, 30, -n), IVec3::new(n, 30 + 2 * n, n));
+        assert_backends_agree(&terrain, bounds, 15_000, seed);
+    }
+}
+
+#[test]
+fn backends_agree_on_speckled_volumes_with_odd_bounds() {
+    let cases = [
+        IAabb::new(IVec3::new(-5, -3, -7), IVec3::new(9, 6, 4)),
+        IAabb::new(IVec3::new(0, 0, 0), IVec3::new(37, 5, 23)),
+        IAabb::new(IVec3::new(-16, -16, -16), IVec3::new(16, 16, 16)),
+        IAabb::new(IVec3::new(3, -40, 1), IVec3::new(4, 41, 2)),
+    ];
+    for (i, bounds) in cases.into_iter().enumerate() {
+        for percent in [5, 40] {
+            let source = speckle(i as u64 * 31 + percent, percent);
+            assert_backends_agree(&source, bounds, 5_000, i as u64 + percent);
+        }
+    }
+}
+
+#[test]
+fn backends_match_the_brute_force_reference() {
+    let mut rng = Rng::new(99);
+    for (i, bounds) in [
+        IAabb::new(IVec3::new(-6, -6, -6), IVec3::new(6, 6, 6)),
+        IAabb::new(IVec3::new(-3, 0, -9), IVec3::new(10, 7, 2)),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let source = speckle(i as u64, 12);
+        let dense = DenseScene::build(&source, bounds).unwrap();
+        let octree = OctreeScene::build(&source, bounds).unwrap();
+        for _ in 0..3000 {
+            let ray = ray_for(&mut rng, &bounds);
+            let expected = first_hit(&ray, bounds, |p| source.material(p));
+            assert_eq!(as_ref_hit(dense.trace(&ray)), expected, "dense, {ray:?}");
+            assert_eq!(as_ref_hit(octree.trace(&ray)), expected, "octree, {ray:?}");
+        }
+    }
+}

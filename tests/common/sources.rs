@@ -1,0 +1,43 @@
+//! Small voxel sources the tests generate themselves.
+
+use voxtrace::glam::{IVec3, U8Vec3};
+use voxtrace::{FnSource, Palette};
+
+/// A 64-bit hash of a position and seed (SplitMix-style finalizer).
+pub fn hash(pos: IVec3, seed: u64) -> u64 {
+    let mut z = seed
+        ^ (pos.x as u32 as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ (pos.y as u32 as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F)
+        ^ (pos.z as u32 as u64).wrapping_mul(0x1656_67B1_9E37_79F9);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+pub fn palette(n: u8) -> Palette {
+    let colors: Vec<U8Vec3> = (1..=n)
+        .map(|i| U8Vec3::new(i.wrapping_mul(37), i.wrapping_mul(91), i.wrapping_mul(153)))
+        .collect();
+    Palette::new(&colors)
+}
+
+/// Random voxels: each position solid with probability `percent / 100`, in
+/// one of four materials. Clumpy when `percent` is low (empty 8^3 blocks
+/// make empty octree nodes), with some fully solid blocks.
+pub fn speckle(seed: u64, percent: u64) -> FnSource<impl Fn(IVec3) -> u8> {
+    FnSource::new(palette(4), move |pos: IVec3| {
+        let block = hash(pos >> 3, seed);
+        match block % 8 {
+            0..=2 => 0,                      // an empty block
+            3 => 1 + (block >> 8) as u8 % 4, // a solid block of one material
+            _ => {
+                let h = hash(pos, seed);
+                if h % 100 < percent {
+                    1 + ((h >> 32) % 4) as u8
+                } else {
+                    0
+                }
+            }
+        }
+    })
+}
