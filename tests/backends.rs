@@ -83,3 +83,46 @@ fn backends_match_the_brute_force_reference() {
         }
     }
 }
+
+#[test]
+fn backends_render_byte_identical_images() {
+    use voxtrace::glam::Vec3;
+    use voxtrace::{render, Camera, CameraSettings, RenderOptions};
+    for (seed, n, lookfrom, lookat) in [
+        (1u64, 50, Vec3::new(45.0, 70.0, 45.0), Vec3::ZERO),
+        (2, 64, Vec3::new(60.0, 110.0, 30.0), Vec3::ZERO),
+        (3, 40, Vec3::new(0.5, 60.0, -80.0), Vec3::ZERO),
+        // Inside the volume, above the terrain, looking across it.
+        (
+            4,
+            60,
+            Vec3::new(-20.0, 58.5, 10.0),
+            Vec3::new(40.0, 45.0, 30.0),
+        ),
+    ] {
+        let terrain = VoxelGenerator::new(seed);
+        let bounds = IAabb::centered(n);
+        let dense = DenseScene::build(&terrain, bounds).unwrap();
+        let octree = OctreeScene::build(&terrain, bounds).unwrap();
+        let camera = Camera::new(CameraSettings {
+            width: 96,
+            height: 54,
+            lookfrom,
+            lookat,
+            ..CameraSettings::default()
+        })
+        .unwrap();
+        for flat in [false, true] {
+            let options = RenderOptions { flat };
+            let (mut a, mut b) = (vec![0u32; 96 * 54], vec![0u32; 96 * 54]);
+            let sa = render(&dense, &camera, &options, &mut a).unwrap();
+            let sb = render(&octree, &camera, &options, &mut b).unwrap();
+            assert_eq!(sa, sb);
+            assert!(a == b, "seed {seed}: images differ");
+            assert!(
+                sa.primary_hits > 0 && sa.primary_hits < sa.primary_rays,
+                "seed {seed}: {sa:?}"
+            );
+        }
+    }
+}
