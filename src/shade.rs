@@ -55,7 +55,8 @@ pub fn shade(hit: Option<&Hit>, ray: &Ray, options: &RenderOptions) -> U8Vec3 {
 /// horizon color.
 #[must_use]
 pub fn sky(dir: Vec3) -> U8Vec3 {
-    let t = dir.y.clamp(0.0, 1.0);
+    // Written so that a NaN component gives the horizon, not a NaN color.
+    let t = if dir.y > 0.0 { dir.y.min(1.0) } else { 0.0 };
     let (h, z) = (SKY_HORIZON.as_vec3(), SKY_ZENITH.as_vec3());
     to_u8(h + (z - h) * t)
 }

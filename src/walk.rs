@@ -118,14 +118,15 @@ impl Walk {
             } else {
                 to_cell(floor32(o))
             };
-            if step[axis] != 0 {
-                let entry_plane = start[axis] + i32::from(step[axis] < 0);
-                if entry_plane as f32 == o {
-                    start_keys[axis] = Key {
-                        t: 0.0,
-                        axis: axis as u8,
-                    };
-                }
+            // The start cell's entry plane is floor(o) moving up, ceil(o)
+            // moving down: the origin lies on it exactly when it is an
+            // integer. (Compared in f32: the saturated cell of a huge origin
+            // must not be incremented.)
+            if step[axis] != 0 && floor32(o) == o {
+                start_keys[axis] = Key {
+                    t: 0.0,
+                    axis: axis as u8,
+                };
             }
         }
         let mut walk = Walk {

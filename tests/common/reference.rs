@@ -62,7 +62,7 @@ fn axes(ray: &Ray) -> [Axis; 3] {
         let of = f64::from(o[a]);
         // The cell just after t = 0: below an integer origin when moving down.
         let start = if step < 0 && of.fract() == 0.0 {
-            of as i64 - 1
+            (of as i64).saturating_sub(1)
         } else {
             of.floor() as i64
         };
@@ -99,7 +99,7 @@ fn interval(ax: &Axis, axis: usize, c: i64) -> Option<(Key, Key)> {
     if ax.step == 0 {
         return (c == ax.start).then_some((before, never));
     }
-    let ahead = (c - ax.start) * ax.step;
+    let ahead = c.saturating_sub(ax.start).saturating_mul(ax.step);
     if ahead < 0 {
         return None;
     }
@@ -118,15 +118,23 @@ fn interval(ax: &Axis, axis: usize, c: i64) -> Option<(Key, Key)> {
     } else {
         crossing(ax, axis, entry_plane, ahead)
     };
-    Some((entry, crossing(ax, axis, exit_plane, ahead + 1)))
+    Some((
+        entry,
+        crossing(ax, axis, exit_plane, ahead.saturating_add(1)),
+    ))
 }
 
 /// The first solid voxel of `material` inside `bounds` along `ray`.
 pub fn first_hit(ray: &Ray, bounds: IAabb, material: impl Fn(IVec3) -> u8) -> Option<RefHit> {
+    first_hit_among(ray, bounds.iter().map(|p| (p, material(p))))
+}
+
+/// The first voxel along `ray` among `solids` (position, material); entries
+/// with material 0 are skipped.
+pub fn first_hit_among(ray: &Ray, solids: impl IntoIterator<Item = (IVec3, u8)>) -> Option<RefHit> {
     let ax = axes(ray);
     let mut best: Option<(Key, RefHit)> = None;
-    for pos in bounds.iter() {
-        let m = material(pos);
+    for (pos, m) in solids {
         if m == 0 {
             continue;
         }
@@ -188,4 +196,81 @@ pub fn as_ref_hit(hit: Option<voxtrace::Hit>) -> Option<RefHit> {
         t: h.t,
         material: h.material,
     })
+}
+
+/// Entry and exit distances of the unit cube at `pos`, grown by `grow` on
+/// every side, along the forward ray, in f64 from the ray's f32 origin and
+/// direction; `None` if they miss.
+pub fn slab64(ray: &Ray, pos: IVec3, grow: f64) -> Option<(f64, f64)> {
+    let (o, d) = (ray.origin(), ray.dir());
+    let (mut lo, mut hi) = (0.0f64, f64::INFINITY);
+    for a in 0..3 {
+        let (o, d) = (f64::from(o[a]), f64::from(d[a]));
+        let (p, q) = (f64::from(pos[a]) - grow, f64::from(pos[a]) + 1.0 + grow);
+        if d == 0.0 {
+            if o < p || o > q {
+                return None;
+            }
+            continue;
+        }
+        let (t1, t2) = ((p - o) / d, (q - o) / d);
+        lo = lo.max(t1.min(t2));
+        hi = hi.min(t1.max(t2));
+    }
+    (lo <= hi).then_some((lo, hi))
+}
+
+/// The farthest distance a ray reaches: crossings beyond overflow f32.
+const REACH: f64 = f32::MAX as f64;
+
+/// Checks a backend's answer against geometry in f64, independently of the
+/// f32 definition: the hit voxel lies on the ray at distance `t` (within
+/// `tol`), and no solid voxel is crossed for more than `tol` before it. For a
+/// miss, no solid voxel is crossed for more than `tol`. `tol` scales with the
+/// magnitudes involved, since f32 inputs carry relative error ~6e-8.
+/// Voxels farther than `f32::MAX` are out of reach by definition (a crossing
+/// whose distance overflows f32 never happens).
+pub fn check_geometry(
+    ray: &Ray,
+    hit: Option<&voxtrace::Hit>,
+    solids: &[(IVec3, u8)],
+) -> Result<(), String> {
+    let scale = 1.0 + f64::from(ray.origin().abs().max_element());
+    let tol = |t: f64| 2e-6 * (scale + t.abs());
+    if let Some(h) = hit {
+        let t = f64::from(h.t);
+        // Grown by the tolerance: a ray that only touches the voxel's
+        // boundary may miss it by rounding.
+        let Some((glo, ghi)) = slab64(ray, h.pos, tol(t)) else {
+            return Err(format!("hit {} is not on the ray", h.pos));
+        };
+        let entered_late = slab64(ray, h.pos, 0.0).is_some_and(|(lo, _)| t > lo + tol(t));
+        if t < glo - tol(t) || t > ghi + tol(t) || entered_late {
+            return Err(format!(
+                "hit {} at t={t}, but geometry spans [{glo}, {ghi}]",
+                h.pos
+            ));
+        }
+        for &(pos, _) in solids {
+            // Only the interior counts: a ray in a face plane only touches
+            // the voxel, and there the tie rule decides.
+            if let Some((lo, hi)) = slab64(ray, pos, -tol(0.0)).filter(|&(lo, _)| lo < REACH) {
+                if hi - lo > tol(hi) && lo < t - tol(t) {
+                    return Err(format!(
+                        "{pos} is crossed in [{lo}, {hi}], before the hit {} at {t}",
+                        h.pos
+                    ));
+                }
+            }
+        }
+    } else {
+        for &(pos, _) in solids {
+            if let Some((lo, hi)) = slab64(ray, pos, -tol(0.0)).filter(|&(lo, _)| lo < REACH) {
+                if hi - lo > tol(hi) {
+                    return Err(format!("miss, but {pos} is crossed in [{lo}, {hi}]"));
+                }
+            }
+        }
+    }
+    Ok(())
 }

@@ -41,3 +41,49 @@ pub fn speckle(seed: u64, percent: u64) -> FnSource<impl Fn(IVec3) -> u8> {
         }
     })
 }
+
+/// A source made of a list of voxels, which classifies boxes by the list, so
+/// that huge, nearly empty volumes build quickly.
+pub struct ListSource {
+    palette: Palette,
+    map: std::collections::HashMap<IVec3, u8>,
+    pub list: Vec<(IVec3, u8)>,
+}
+
+impl ListSource {
+    pub fn new(list: Vec<(IVec3, u8)>) -> Self {
+        let map = list.iter().copied().collect();
+        Self {
+            palette: palette(4),
+            map,
+            list,
+        }
+    }
+}
+
+impl voxtrace::VoxelSource for ListSource {
+    fn palette(&self) -> &Palette {
+        &self.palette
+    }
+
+    fn material(&self, pos: IVec3) -> u8 {
+        self.map.get(&pos).copied().unwrap_or(0)
+    }
+
+    fn classify(&self, region: voxtrace::IAabb) -> voxtrace::Region {
+        if self.list.iter().any(|(p, _)| region.contains(*p)) {
+            voxtrace::Region::Mixed
+        } else {
+            voxtrace::Region::Empty
+        }
+    }
+}
+
+/// Every solid voxel of `source` in `bounds`, for the reference.
+pub fn solids<S: voxtrace::VoxelSource>(source: &S, bounds: voxtrace::IAabb) -> Vec<(IVec3, u8)> {
+    bounds
+        .iter()
+        .map(|p| (p, source.material(p)))
+        .filter(|&(_, m)| m != 0)
+        .collect()
+}
