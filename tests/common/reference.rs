@@ -99,29 +99,30 @@ fn interval(ax: &Axis, axis: usize, c: i64) -> Option<(Key, Key)> {
     if ax.step == 0 {
         return (c == ax.start).then_some((before, never));
     }
-    let ahead = c.saturating_sub(ax.start).saturating_mul(ax.step);
+    // Is `c` at or ahead of the start cell? (i128: the start cell of a huge
+    // origin saturates at the ends of i64.)
+    let ahead = (i128::from(c) - i128::from(ax.start)) * i128::from(ax.step);
     if ahead < 0 {
         return None;
     }
     let entry_plane = if ax.step > 0 { c } else { c + 1 };
     let exit_plane = if ax.step > 0 { c + 1 } else { c };
+    // Planes of one axis are crossed in the order of `plane * step`, even
+    // when their rounded times are equal.
     let entry = if ahead == 0 {
         if entry_plane as f32 == ax.o {
             Key {
                 t: 0.0,
                 axis,
-                ordinal: 0,
+                ordinal: entry_plane * ax.step,
             }
         } else {
             before
         }
     } else {
-        crossing(ax, axis, entry_plane, ahead)
+        crossing(ax, axis, entry_plane, entry_plane * ax.step)
     };
-    Some((
-        entry,
-        crossing(ax, axis, exit_plane, ahead.saturating_add(1)),
-    ))
+    Some((entry, crossing(ax, axis, exit_plane, exit_plane * ax.step)))
 }
 
 /// The first solid voxel of `material` inside `bounds` along `ray`.
