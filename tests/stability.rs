@@ -617,11 +617,20 @@ fn stability_far_origin_where_every_crossing_rounds_to_one_t() {
     // Found by the fuzz target: from z = 8.1e34 every z plane of the volume
     // is crossed at the same f32 time. The planes must still be visited in
     // order, so the first solid cell along -z is the hit.
-    let f = Fixture::speckled(5, 30, IAabb::new(IVec3::new(-9, -6, -7), IVec3::new(8, 9, 6)));
+    let f = Fixture::speckled(
+        5,
+        30,
+        IAabb::new(IVec3::new(-9, -6, -7), IVec3::new(8, 9, 6)),
+    );
     let r = ray((-0.0, 0.0, 8.112_963_3e34), (7.1e-42, 0.0, -0.5));
-    let hit = f.check(&r).expect("the column below the origin has solid voxels");
+    let hit = f
+        .check(&r)
+        .expect("the column below the origin has solid voxels");
     assert_eq!(hit.face, Some(Face::PosZ));
     let z_column = (-7..6).rev().map(|z| IVec3::new(0, 0, z));
-    let first = z_column.into_iter().find(|&p| f.solids.iter().any(|s| s.0 == p)).unwrap();
+    let first = z_column
+        .into_iter()
+        .find(|&p| f.solids.iter().any(|s| s.0 == p))
+        .unwrap();
     assert_eq!(hit.pos, first);
 }

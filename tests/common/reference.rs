@@ -208,6 +208,9 @@ pub fn slab64(ray: &Ray, pos: IVec3, grow: f64) -> Option<(f64, f64)> {
     for a in 0..3 {
         let (o, d) = (f64::from(o[a]), f64::from(d[a]));
         let (p, q) = (f64::from(pos[a]) - grow, f64::from(pos[a]) + 1.0 + grow);
+        if p > q {
+            return None; // shrunk by more than half a voxel: no interior left
+        }
         if d == 0.0 {
             if o < p || o > q {
                 return None;
