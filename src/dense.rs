@@ -18,11 +18,22 @@ use crate::Error;
 /// # Guarantees
 /// `cells.len()` equals the volume of `bounds`, laid out x fastest, then y,
 /// then z; bounds are non-empty and within [`crate::MAX_COORD`].
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct DenseScene<B> {
     bounds: IAabb,
     cells: B,
     palette: Palette,
+}
+
+impl<B> DenseScene<B> {
+    /// Assembles a scene from cells already laid out for `bounds`.
+    pub(crate) fn from_parts(bounds: IAabb, cells: B, palette: Palette) -> Self {
+        DenseScene {
+            bounds,
+            cells,
+            palette,
+        }
+    }
 }
 
 impl DenseScene<()> {

@@ -38,6 +38,13 @@ pub enum Error {
     },
     /// A ray with a non-finite origin, or a zero or non-finite direction.
     InvalidRay,
+    /// A framebuffer whose size is not the size of the region rendered into it.
+    SizeMismatch {
+        /// `(width, height)` the operation needs.
+        expected: (u32, u32),
+        /// `(width, height)` given.
+        actual: (u32, u32),
+    },
 }
 
 impl fmt::Display for Error {
@@ -61,17 +68,13 @@ impl fmt::Display for Error {
             Error::InvalidRay => {
                 f.write_str("invalid ray: origin must be finite, direction finite and non-zero")
             }
+            Error::SizeMismatch { expected, actual } => write!(
+                f,
+                "size mismatch: {}x{} needed, {}x{} given",
+                expected.0, expected.1, actual.0, actual.1
+            ),
         }
     }
 }
 
 impl core::error::Error for Error {}
-
-#[cfg(feature = "alloc")]
-impl From<alloc::collections::TryReserveError> for Error {
-    /// The requested byte count is not exposed by `TryReserveError`; callers
-    /// that know it use [`Error::OutOfMemory`] directly (see `storage::try_vec`).
-    fn from(_: alloc::collections::TryReserveError) -> Self {
-        Error::OutOfMemory { bytes: usize::MAX }
-    }
-}

@@ -19,11 +19,22 @@ pub fn encode_png<W: Write>(
         ))
     })?;
     let bytes: Vec<u8> = pixels.iter().flat_map(|p| p.to_ne_bytes()).collect();
+    encode_rgba8(writer, width, height, &bytes)
+}
+
+/// The one PNG encoder: RGBA, 8 bits per channel, `width * height * 4`
+/// bytes in `bytes`.
+pub(crate) fn encode_rgba8<W: Write>(
+    writer: W,
+    width: u32,
+    height: u32,
+    bytes: &[u8],
+) -> Result<(), png::EncodingError> {
     let mut encoder = png::Encoder::new(writer, width, height);
     encoder.set_color(png::ColorType::Rgba);
     encoder.set_depth(png::BitDepth::Eight);
     let mut writer = encoder.write_header()?;
-    writer.write_image_data(&bytes)?;
+    writer.write_image_data(bytes)?;
     writer.finish()
 }
 

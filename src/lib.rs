@@ -31,7 +31,10 @@
 //!
 //! ## Features
 //! - `alloc`: storage constructors that allocate (fallibly).
-//! - `std` (default): `std::error::Error` and the std-only pieces; implies `alloc`.
+//! - `std` (default): the atomic [`Framebuffer`]; implies `alloc`.
+//! - `rayon` (default): the framebuffer's parallel pixel iterator, the
+//!   threaded render ([`render_parallel`], byte-identical to the scalar one)
+//!   and parallel storage builds; implies `std`.
 //! - `png` (default): PNG encoding of frames; implies `std`.
 
 #![no_std]
@@ -43,15 +46,23 @@ extern crate alloc;
 #[cfg(feature = "std")]
 extern crate std;
 
+#[cfg(feature = "rayon")]
+mod build_par;
 mod camera;
 mod dense;
 mod error;
+#[cfg(feature = "std")]
+mod framebuffer;
 mod geom;
 mod math;
 mod noise;
 mod octree;
 mod octree_build;
+#[cfg(feature = "rayon")]
+mod par_pixels;
 mod render;
+#[cfg(feature = "rayon")]
+mod render_par;
 mod scene;
 mod shade;
 #[cfg(feature = "alloc")]
@@ -69,15 +80,25 @@ pub use error::Error;
 pub use geom::{Face, Hit, IAabb, Ray, MAX_COORD};
 pub use noise::{Perlin, SplitMix64};
 pub use octree::{Node, OctreeLen, OctreeScene};
-pub use render::{render, render_region, render_span, RayStats, Rect};
+pub use render::{render, render_pixel, render_region, render_span, RayStats, Rect};
 pub use scene::{Scene, Traced};
 pub use shade::{pack, shade, sky, unpack, RenderOptions, FLAT_SKY};
 pub use terrain::{VoxelGenerator, GRASS, HEIGHT, MOUNTAIN, ROUGHNESS, SCALE, SNOW, WATER};
 pub use voxel::{FnSource, Palette, Region, Voxel, VoxelSource};
 pub use walk::max_steps;
 
+#[cfg(feature = "std")]
+pub use framebuffer::Framebuffer;
 #[cfg(feature = "png")]
 pub use image_out::{encode_png, write_png};
+#[cfg(feature = "rayon")]
+pub use par_pixels::{ParPixels, PixelRef, Pixels};
+#[cfg(feature = "rayon")]
+pub use render_par::{render_parallel, render_parallel_with_progress};
+
+/// Re-export of rayon, whose pools run the parallel render and builds.
+#[cfg(feature = "rayon")]
+pub use rayon;
 
 /// Re-export of the math types in voxtrace's API.
 pub use glam;

@@ -88,7 +88,7 @@ pub struct OctreeLen {
 /// The root cube starts at `bounds.min` and has a power-of-two side of at
 /// least 4 covering the bounds; every child index and material offset points
 /// inside its slice; positions outside the bounds are empty.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct OctreeScene<N, M> {
     pub(crate) bounds: IAabb,
     pub(crate) root: Node,

@@ -19,7 +19,7 @@ const TILE_VOLUME: usize = (TILE * TILE * TILE) as usize;
 
 /// Where built nodes and materials go. Each push returns the index of the
 /// first element pushed.
-trait Sink {
+pub(crate) trait Sink {
     fn push_nodes(&mut self, nodes: &[Node]) -> Result<u32, Error>;
     fn push_materials(&mut self, materials: &[u8]) -> Result<u32, Error>;
 }
@@ -80,13 +80,13 @@ impl Sink for SliceSink<'_> {
 /// Grows vectors with fallible reservations.
 #[cfg(feature = "alloc")]
 #[derive(Default)]
-struct VecSink {
-    nodes: alloc::vec::Vec<Node>,
-    materials: alloc::vec::Vec<u8>,
+pub(crate) struct VecSink {
+    pub(crate) nodes: alloc::vec::Vec<Node>,
+    pub(crate) materials: alloc::vec::Vec<u8>,
 }
 
 #[cfg(feature = "alloc")]
-fn push_vec<T: Copy>(dst: &mut alloc::vec::Vec<T>, src: &[T]) -> Result<u32, Error> {
+pub(crate) fn push_vec<T: Copy>(dst: &mut alloc::vec::Vec<T>, src: &[T]) -> Result<u32, Error> {
     let first = index_u32(dst.len())?;
     crate::storage::try_grow(dst, src.len())?;
     dst.extend_from_slice(src);
@@ -106,37 +106,70 @@ impl Sink for VecSink {
 
 /// Side of the root cube: the smallest power of two covering the bounds,
 /// at least one brick.
-fn root_size(bounds: &IAabb) -> i32 {
+pub(crate) fn root_size(bounds: &IAabb) -> i32 {
     let side = bounds.size().max_element().max(BRICK) as u32;
     side.next_power_of_two() as i32
 }
 
+/// What the source says about a cube before any voxel is read.
+pub(crate) enum Cube {
+    /// Empty (`None`) or one solid material: no need to look inside.
+    Decided(Option<Node>),
+    /// Mixed or unknown: this part of the cube lies inside the bounds.
+    Open(IAabb),
+}
+
+/// Asks `source` to classify the cube `[corner, corner + size)` clipped to
+/// `bounds`. Every builder descends only into `Open` cubes, so the
+/// sequential and parallel builds visit the same cubes.
+pub(crate) fn shortcut<S: VoxelSource + ?Sized>(
+    source: &S,
+    bounds: &IAabb,
+    corner: IVec3,
+    size: i32,
+) -> Cube {
+    let cube = IAabb::new(corner, corner + size);
+    let region = cube.intersect(bounds);
+    if region.is_empty() {
+        return Cube::Decided(None);
+    }
+    match source.classify(region) {
+        Region::Empty => Cube::Decided(None),
+        Region::Solid(m) if m != 0 && region == cube => {
+            Cube::Decided(Some(Node(NodeKind::Solid(m))))
+        }
+        _ => Cube::Open(region),
+    }
+}
+
 /// The recursive builder, generic over its sink.
-struct Builder<'s, S: ?Sized, K> {
-    source: &'s S,
-    bounds: IAabb,
-    sink: K,
+pub(crate) struct Builder<'s, S: ?Sized, K> {
+    pub(crate) source: &'s S,
+    pub(crate) bounds: IAabb,
+    pub(crate) sink: K,
     /// One tile of materials, in the layout of the clipped tile box.
     tile: [u8; TILE_VOLUME],
     tile_box: IAabb,
 }
 
-impl<S: VoxelSource + ?Sized, K: Sink> Builder<'_, S, K> {
+impl<'s, S: VoxelSource + ?Sized, K: Sink> Builder<'s, S, K> {
+    pub(crate) fn new(source: &'s S, bounds: IAabb, sink: K) -> Self {
+        Builder {
+            source,
+            bounds,
+            sink,
+            tile: [0; TILE_VOLUME],
+            tile_box: IAabb::new(IVec3::ZERO, IVec3::ZERO),
+        }
+    }
+
     /// Builds the node for the cube `[corner, corner + size)`; `None` when
     /// it holds no solid voxel.
-    fn node(&mut self, corner: IVec3, size: i32) -> Result<Option<Node>, Error> {
-        let cube = IAabb::new(corner, corner + size);
-        let region = cube.intersect(&self.bounds);
-        if region.is_empty() {
-            return Ok(None);
-        }
-        match self.source.classify(region) {
-            Region::Empty => return Ok(None),
-            Region::Solid(m) if m != 0 && region == cube => {
-                return Ok(Some(Node(NodeKind::Solid(m))));
-            }
-            _ => {}
-        }
+    pub(crate) fn node(&mut self, corner: IVec3, size: i32) -> Result<Option<Node>, Error> {
+        let region = match shortcut(self.source, &self.bounds, corner, size) {
+            Cube::Decided(node) => return Ok(node),
+            Cube::Open(region) => region,
+        };
         if size <= TILE {
             self.tile_box = region;
             let volume = region.volume()?;
@@ -221,7 +254,7 @@ impl<S: VoxelSource + ?Sized, K: Sink> Builder<'_, S, K> {
 
     /// Merges eight children: all empty stays empty, eight equal solids
     /// become one solid, anything else a branch over its stored children.
-    fn combine(&mut self, children: &[Option<Node>; 8]) -> Result<Option<Node>, Error> {
+    pub(crate) fn combine(&mut self, children: &[Option<Node>; 8]) -> Result<Option<Node>, Error> {
         if let Some(Node(NodeKind::Solid(m))) = children[0] {
             if children
                 .iter()
@@ -252,7 +285,7 @@ impl<S: VoxelSource + ?Sized, K: Sink> Builder<'_, S, K> {
 }
 
 /// Offset of child octant `i` (`x | y << 1 | z << 2`) in units of half a side.
-fn child_offset(i: usize) -> IVec3 {
+pub(crate) fn child_offset(i: usize) -> IVec3 {
     IVec3::new((i & 1) as i32, ((i >> 1) & 1) as i32, ((i >> 2) & 1) as i32)
 }
 
@@ -264,13 +297,7 @@ fn build_root<S: VoxelSource + ?Sized, K: Sink>(
 ) -> Result<(Node, i32, K), Error> {
     bounds.validate()?;
     let size = root_size(&bounds);
-    let mut builder = Builder {
-        source,
-        bounds,
-        sink,
-        tile: [0; TILE_VOLUME],
-        tile_box: IAabb::new(IVec3::ZERO, IVec3::ZERO),
-    };
+    let mut builder = Builder::new(source, bounds, sink);
     let root = builder.node(bounds.min, size)?.unwrap_or(Node::EMPTY);
     Ok((root, size, builder.sink))
 }

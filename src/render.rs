@@ -1,8 +1,8 @@
 //! The scalar tracer: renders rows of pixels into a caller's `&mut [u32]`.
 //!
-//! One unit of work, [`render_span`], renders a run of pixels of one row; the
-//! full frame, crops, and the threaded renderer are all made of it, so they
-//! cannot disagree.
+//! One function, [`render_pixel`], defines a pixel's value; spans of a row,
+//! crops, the full frame and the threaded renderer are all made of it, so
+//! they cannot disagree.
 
 use crate::camera::Camera;
 use crate::scene::Scene;
@@ -84,6 +84,26 @@ impl Rect {
     }
 }
 
+/// Renders pixel `(x, y)` of `camera`'s frame: its packed color and the rays
+/// it traced. The one definition of a pixel's value; every renderer (span,
+/// crop, frame, threaded) calls it, so they cannot disagree.
+#[inline]
+pub fn render_pixel<S: Scene + ?Sized>(
+    scene: &S,
+    camera: &Camera,
+    options: &RenderOptions,
+    x: u32,
+    y: u32,
+) -> (u32, RayStats) {
+    let ray = camera.get_ray(x, y);
+    let hit = scene.trace(&ray);
+    let stats = RayStats {
+        primary_rays: 1,
+        primary_hits: u64::from(hit.is_some()),
+    };
+    (pack(shade(hit.as_ref(), &ray, options)), stats)
+}
+
 /// Renders pixels `(x0 + i, y)` for every `i` in `0..out.len()` into `out`.
 ///
 /// The caller keeps the pixels inside the frame. Allocates nothing.
@@ -97,11 +117,9 @@ pub fn render_span<S: Scene + ?Sized>(
 ) -> RayStats {
     let mut stats = RayStats::default();
     for (x, pixel) in (x0..).zip(out.iter_mut()) {
-        let ray = camera.get_ray(x, y);
-        let hit = scene.trace(&ray);
-        stats.primary_rays += 1;
-        stats.primary_hits += u64::from(hit.is_some());
-        *pixel = pack(shade(hit.as_ref(), &ray, options));
+        let (rgba, rays) = render_pixel(scene, camera, options, x, y);
+        *pixel = rgba;
+        stats += rays;
     }
     stats
 }

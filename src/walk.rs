@@ -56,7 +56,7 @@ impl Key {
     }
 }
 
-/// Most moves ([`Walk::step`] or [`Walk::leave`]) any ray makes in `bounds`.
+/// Most moves (single cell steps or jumps over empty boxes) any ray makes in `bounds`.
 #[must_use]
 pub fn max_steps(bounds: &IAabb) -> u32 {
     let s = bounds.size().max(IVec3::ZERO).as_uvec3();

@@ -64,6 +64,11 @@ pub struct Args {
     #[arg(long)]
     pub flat: bool,
 
+    /// Worker threads for the build and the render; 1 runs the scalar
+    /// single-threaded path [default: all cores].
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
+    pub threads: Option<u16>,
+
     /// Print `key: value` statistics to stderr.
     #[arg(long)]
     pub stats: bool,

@@ -5,6 +5,7 @@
 //! problem.
 
 mod args;
+mod progress;
 
 use std::fs::File;
 use std::io::BufWriter;
@@ -13,12 +14,14 @@ use std::time::Instant;
 
 use clap::Parser;
 use voxtrace::glam::Vec3;
+use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{
-    encode_png, render_region, Camera, CameraSettings, DenseScene, IAabb, OctreeScene, Rect,
-    RenderOptions, Scene, VoxelGenerator,
+    encode_png, render_parallel_with_progress, render_span, Camera, CameraSettings, DenseScene,
+    Framebuffer, IAabb, OctreeScene, RayStats, Rect, RenderOptions, Scene, VoxelGenerator,
 };
 
 use args::{Args, Backend};
+use progress::Progress;
 
 fn main() -> ExitCode {
     let args = match Args::try_parse() {
@@ -92,7 +95,30 @@ fn run(args: &Args) -> Result<(), String> {
     result
 }
 
+/// Builds the scene and renders it: on the calling thread with `--threads 1`,
+/// otherwise on a rayon pool of that many threads (all cores by default).
 fn render_to(
+    args: &Args,
+    seed: u64,
+    camera: &Camera,
+    region: Rect,
+    file: File,
+) -> Result<(), String> {
+    let work = || build_and_render(args, seed, camera, region, file);
+    match args.threads {
+        Some(1) => work(),
+        threads => {
+            let count = threads.map_or(0, usize::from); // 0: rayon picks all cores
+            ThreadPoolBuilder::new()
+                .num_threads(count)
+                .build()
+                .map_err(|e| format!("cannot start {count} worker threads: {e}"))?
+                .install(work)
+        }
+    }
+}
+
+fn build_and_render(
     args: &Args,
     seed: u64,
     camera: &Camera,
@@ -101,6 +127,7 @@ fn render_to(
 ) -> Result<(), String> {
     let terrain = VoxelGenerator::new(seed);
     let bounds = IAabb::centered(args.size);
+    let threaded = args.threads != Some(1);
     let started = Instant::now();
     let describe = |e: voxtrace::Error| {
         let backend = format!("{:?}", args.backend).to_lowercase();
@@ -111,7 +138,12 @@ fn render_to(
     };
     match args.backend {
         Backend::Dense => {
-            let scene = DenseScene::build(&terrain, bounds).map_err(|e| match e {
+            let built = if threaded {
+                DenseScene::build_parallel(&terrain, bounds)
+            } else {
+                DenseScene::build(&terrain, bounds)
+            };
+            let scene = built.map_err(|e| match e {
                 voxtrace::Error::OutOfMemory { .. } | voxtrace::Error::SizeOverflow => {
                     // Exact even when it overflows usize: one byte per voxel.
                     let bytes = (2 * u128::from(args.size.unsigned_abs())).pow(3);
@@ -126,13 +158,18 @@ fn render_to(
             finish(args, &scene, camera, region, started, file)
         }
         Backend::Octree => {
-            let scene = OctreeScene::build(&terrain, bounds).map_err(describe)?;
+            let built = if threaded {
+                OctreeScene::build_parallel(&terrain, bounds)
+            } else {
+                OctreeScene::build(&terrain, bounds)
+            };
+            let scene = built.map_err(describe)?;
             finish(args, &scene, camera, region, started, file)
         }
     }
 }
 
-fn finish<S: Scene>(
+fn finish<S: Scene + Sync>(
     args: &Args,
     scene: &S,
     camera: &Camera,
@@ -142,20 +179,39 @@ fn finish<S: Scene>(
 ) -> Result<(), String> {
     let build = build_started.elapsed();
     let options = RenderOptions { flat: args.flat };
-    let mut pixels = Vec::new();
-    let area = region.area().map_err(|e| e.to_string())?;
-    pixels.try_reserve_exact(area).map_err(|_| {
+    let no_memory = || {
         format!(
             "out of memory: cannot allocate a {}x{} image",
             region.width, region.height
         )
-    })?;
-    pixels.resize(area, 0);
+    };
 
+    let progress = Progress::rows(region.height);
     let render_started = Instant::now();
-    let rays =
-        render_region(scene, camera, &options, region, &mut pixels).map_err(|e| e.to_string())?;
+    let (pixels, rays) = if args.threads == Some(1) {
+        // The scalar path, row by row for the progress bar.
+        let area = region.area().map_err(|e| e.to_string())?;
+        let mut pixels = Vec::new();
+        pixels.try_reserve_exact(area).map_err(|_| no_memory())?;
+        pixels.resize(area, 0);
+        let mut rays = RayStats::default();
+        let rows = pixels.chunks_exact_mut(region.width as usize);
+        for (y, row) in (region.y..).zip(rows) {
+            rays += render_span(scene, camera, &options, region.x, y, row);
+            progress.advance(1);
+        }
+        (pixels, rays)
+    } else {
+        let frame = Framebuffer::new(region.width, region.height).map_err(|_| no_memory())?;
+        let rays =
+            render_parallel_with_progress(scene, camera, &options, region, &frame, &|rows| {
+                progress.advance(rows);
+            })
+            .map_err(|e| e.to_string())?;
+        (frame.into_pixels(), rays)
+    };
     let render = render_started.elapsed();
+    progress.finish();
 
     let encode_started = Instant::now();
     encode_png(BufWriter::new(file), region.width, region.height, &pixels)

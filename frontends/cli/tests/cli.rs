@@ -101,6 +101,34 @@ fn region_is_the_same_pixels_as_the_full_frame() {
 }
 
 #[test]
+fn every_thread_count_writes_the_same_file() {
+    let scalar = std::fs::read(render("octree", &["--threads", "1"], "t1.png")).unwrap();
+    for threads in ["2", "3"] {
+        let name = format!("t{threads}.png");
+        for backend in ["octree", "dense"] {
+            let threaded = render(backend, &["--threads", threads], &name);
+            assert!(
+                std::fs::read(threaded).unwrap() == scalar,
+                "{backend} with --threads {threads} differs from --threads 1"
+            );
+        }
+    }
+    // A crop on threads equals the scalar crop.
+    let crop = ["--region", "7,150,301,30"];
+    let a = std::fs::read(render(
+        "octree",
+        &[&crop[..], &["--threads", "1"]].concat(),
+        "c1.png",
+    ));
+    let b = std::fs::read(render(
+        "octree",
+        &[&crop[..], &["--threads", "2"]].concat(),
+        "c2.png",
+    ));
+    assert!(a.unwrap() == b.unwrap());
+}
+
+#[test]
 fn stats_print_every_contract_key() {
     let out = scratch("stats.png");
     let result = voxtrace(&[
@@ -190,6 +218,8 @@ fn bad_input_exits_2_with_one_line_naming_the_value() {
         (&["--position", "5,5,5", "--lookat", "5,5,5"], "coincide"),
         (&["--position", "0,50,0"], "parallel"),
         (&["--region", "300,0,64,64"], "300,0,64,64"),
+        (&["--threads", "0"], "0"),
+        (&["--threads", "-3"], "-3"),
         (&["--out", unwritable], unwritable),
         (
             &["--size", "4194304", "--backend", "dense"],

@@ -1,0 +1,176 @@
+//! Building both storages on the rayon pool (feature `rayon`), with exactly
+//! the result of the sequential builds: the same bytes, the same nodes in
+//! the same order.
+
+use glam::IVec3;
+use rayon::prelude::*;
+use std::vec::Vec;
+
+use crate::dense::DenseScene;
+use crate::geom::IAabb;
+use crate::octree::{BrickMaterials, Node, NodeKind, OctreeScene};
+use crate::octree_build::{child_offset, push_vec, root_size, shortcut, Builder, Cube, VecSink};
+use crate::storage::{try_grow, try_vec};
+use crate::voxel::VoxelSource;
+use crate::Error;
+
+impl DenseScene<Vec<u8>> {
+    /// [`DenseScene::build`] on the current rayon pool: one task per z-slice
+    /// of the volume, each filled by the source. Same bytes as `build`.
+    pub fn build_parallel<S: VoxelSource + Sync + ?Sized>(
+        source: &S,
+        bounds: IAabb,
+    ) -> Result<Self, Error> {
+        let len = DenseScene::required_len(bounds)?;
+        let mut cells = try_vec::<u8>(len)?;
+        cells.resize(len, 0);
+        let slice_len = (bounds.size().x * bounds.size().y) as usize;
+        cells
+            .par_chunks_mut(slice_len)
+            .zip(bounds.min.z..bounds.max.z)
+            .for_each(|(slice, z)| {
+                let min = IVec3::new(bounds.min.x, bounds.min.y, z);
+                let max = IVec3::new(bounds.max.x, bounds.max.y, z + 1);
+                source.fill_box(IAabb::new(min, max), slice);
+            });
+        Ok(DenseScene::from_parts(
+            bounds,
+            cells,
+            source.palette().clone(),
+        ))
+    }
+}
+
+/// Side of the cubes handed to one task. 64^3 voxels are a few milliseconds
+/// of work: enough tasks to balance two to sixteen threads on a terrain,
+/// few enough that scheduling costs nothing.
+const TASK: i32 = 64;
+
+impl OctreeScene<Vec<Node>, Vec<u8>> {
+    /// [`OctreeScene::build`] on the current rayon pool; the nodes and
+    /// materials are identical, in the same order.
+    ///
+    /// The cubes of side 64 that the sequential builder would open are built
+    /// in parallel, each into its own vectors; they are then appended in the
+    /// sequential order, with child indices and material offsets shifted, and
+    /// the levels above them are built as `build` would. The parts are freed
+    /// as they are appended, so the peak memory is about the final size plus
+    /// the largest part.
+    pub fn build_parallel<S: VoxelSource + Sync + ?Sized>(
+        source: &S,
+        bounds: IAabb,
+    ) -> Result<Self, Error> {
+        bounds.validate()?;
+        let size = root_size(&bounds);
+        let mut tasks = Vec::new();
+        collect_tasks(source, &bounds, bounds.min, size, &mut tasks)?;
+        let parts: Vec<Result<Part, Error>> = tasks
+            .par_iter()
+            .map(|&corner| {
+                let mut builder = Builder::new(source, bounds, VecSink::default());
+                let root = builder.node(corner, size.min(TASK))?;
+                Ok((root, builder.sink))
+            })
+            .collect();
+        let mut parts = parts.into_iter();
+        let mut builder = Builder::new(source, bounds, VecSink::default());
+        let root = assemble(&mut builder, &mut parts, bounds.min, size)?.unwrap_or(Node::EMPTY);
+        let VecSink {
+            mut nodes,
+            mut materials,
+        } = builder.sink;
+        nodes.shrink_to_fit();
+        materials.shrink_to_fit();
+        Ok(OctreeScene {
+            bounds,
+            root,
+            root_size: size,
+            nodes,
+            materials,
+            palette: source.palette().clone(),
+        })
+    }
+}
+
+/// A subtree built by one task: its root and its own nodes and materials.
+type Part = (Option<Node>, VecSink);
+
+/// The corners of the task cubes, in the order the sequential builder
+/// reaches them.
+fn collect_tasks<S: VoxelSource + ?Sized>(
+    source: &S,
+    bounds: &IAabb,
+    corner: IVec3,
+    size: i32,
+    tasks: &mut Vec<IVec3>,
+) -> Result<(), Error> {
+    if let Cube::Decided(_) = shortcut(source, bounds, corner, size) {
+        return Ok(());
+    }
+    if size <= TASK {
+        try_grow(tasks, 1)?;
+        tasks.push(corner);
+        return Ok(());
+    }
+    let half = size / 2;
+    for i in 0..8 {
+        collect_tasks(source, bounds, corner + child_offset(i) * half, half, tasks)?;
+    }
+    Ok(())
+}
+
+/// Replays the sequential recursion above the task cubes, appending each
+/// task's part where the sequential builder would have written it.
+fn assemble<S: VoxelSource + ?Sized>(
+    builder: &mut Builder<'_, S, VecSink>,
+    parts: &mut impl Iterator<Item = Result<Part, Error>>,
+    corner: IVec3,
+    size: i32,
+) -> Result<Option<Node>, Error> {
+    if let Cube::Decided(node) = shortcut(builder.source, &builder.bounds, corner, size) {
+        return Ok(node);
+    }
+    if size <= TASK {
+        let (root, part) = parts
+            .next()
+            .expect("collect_tasks made one part for each cube assemble reaches")?;
+        return append(&mut builder.sink, root, part);
+    }
+    let half = size / 2;
+    let mut children = [None; 8];
+    for (i, child) in children.iter_mut().enumerate() {
+        *child = assemble(builder, parts, corner + child_offset(i) * half, half)?;
+    }
+    builder.combine(&children)
+}
+
+/// Appends a part's nodes and materials to `sink`, shifting the indices they
+/// hold by where they land; returns the part's root, shifted the same way.
+fn append(sink: &mut VecSink, root: Option<Node>, part: VecSink) -> Result<Option<Node>, Error> {
+    let to_u32 = |n: usize| u32::try_from(n).map_err(|_| Error::SizeOverflow);
+    let node_shift = to_u32(sink.nodes.len())?;
+    let material_shift = to_u32(sink.materials.len())?;
+    let shift = |node: Node| -> Result<Node, Error> {
+        let add = |index: u32, by: u32| index.checked_add(by).ok_or(Error::SizeOverflow);
+        Ok(Node(match node.0 {
+            NodeKind::Branch { children, first } => NodeKind::Branch {
+                children,
+                first: add(first, node_shift)?,
+            },
+            NodeKind::Brick {
+                occupancy,
+                materials: BrickMaterials::Packed(offset),
+            } => NodeKind::Brick {
+                occupancy,
+                materials: BrickMaterials::Packed(add(offset, material_shift)?),
+            },
+            kind => kind,
+        }))
+    };
+    try_grow(&mut sink.nodes, part.nodes.len())?;
+    for &node in &part.nodes {
+        sink.nodes.push(shift(node)?);
+    }
+    push_vec(&mut sink.materials, &part.materials)?;
+    root.map(shift).transpose()
+}

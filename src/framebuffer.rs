@@ -1,0 +1,120 @@
+//! `Framebuffer`: one `AtomicU32` per pixel, so any number of threads can
+//! write disjoint pixels through a shared reference (feature `std`).
+//!
+//! Pixels are packed RGBA8 (see [`crate::pack`]), row-major, the same layout
+//! as the scalar render's `&mut [u32]`.
+
+use core::sync::atomic::{AtomicU32, Ordering};
+use std::vec::Vec;
+
+use crate::Error;
+
+/// A `width x height` image of atomic RGBA8 pixels.
+///
+/// # Guarantees
+/// `width` and `height` are non-zero and the pixel slice holds exactly
+/// `width * height` pixels, row-major. Stores and loads are `Relaxed`: a
+/// render publishes its pixels by returning (the threads are joined), not
+/// through the atomics.
+#[derive(Debug)]
+pub struct Framebuffer {
+    width: u32,
+    height: u32,
+    pixels: Vec<AtomicU32>,
+}
+
+impl Framebuffer {
+    /// A framebuffer of transparent black pixels. Allocates its pixels with
+    /// `try_reserve`: an image too large for memory is
+    /// [`Error::OutOfMemory`], never an abort.
+    pub fn new(width: u32, height: u32) -> Result<Self, Error> {
+        if width == 0 || height == 0 {
+            return Err(Error::ZeroSize);
+        }
+        let len = (width as usize)
+            .checked_mul(height as usize)
+            .ok_or(Error::SizeOverflow)?;
+        let mut pixels = crate::storage::try_vec::<AtomicU32>(len)?;
+        pixels.resize_with(len, || AtomicU32::new(0));
+        Ok(Framebuffer {
+            width,
+            height,
+            pixels,
+        })
+    }
+
+    /// Columns.
+    #[must_use]
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Rows.
+    #[must_use]
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Every pixel, row-major.
+    #[must_use]
+    pub fn pixels(&self) -> &[AtomicU32] {
+        &self.pixels
+    }
+
+    /// The pixel at `(x, y)`, or `None` outside the image.
+    #[must_use]
+    pub fn get(&self, x: u32, y: u32) -> Option<u32> {
+        (x < self.width && y < self.height)
+            .then(|| self.pixels[self.index(x, y)].load(Ordering::Relaxed))
+    }
+
+    /// Sets the pixel at `(x, y)`; returns `false` (and writes nothing)
+    /// outside the image.
+    pub fn set(&self, x: u32, y: u32, rgba: u32) -> bool {
+        let inside = x < self.width && y < self.height;
+        if inside {
+            self.pixels[self.index(x, y)].store(rgba, Ordering::Relaxed);
+        }
+        inside
+    }
+
+    fn index(&self, x: u32, y: u32) -> usize {
+        y as usize * self.width as usize + x as usize
+    }
+
+    /// Copies the pixels into `out` in the scalar render's layout; fails
+    /// with [`Error::BufferTooSmall`] if `out` is shorter than the image
+    /// (the rest of a longer `out` is left alone). Allocates nothing.
+    pub fn copy_to(&self, out: &mut [u32]) -> Result<(), Error> {
+        let actual = out.len();
+        let out = out
+            .get_mut(..self.pixels.len())
+            .ok_or(Error::BufferTooSmall {
+                required: self.pixels.len(),
+                actual,
+            })?;
+        for (dst, src) in out.iter_mut().zip(&self.pixels) {
+            *dst = src.load(Ordering::Relaxed);
+        }
+        Ok(())
+    }
+
+    /// The pixels as plain `u32`s in the scalar render's layout, reusing
+    /// the framebuffer's allocation.
+    #[must_use]
+    pub fn into_pixels(self) -> Vec<u32> {
+        // Same size and alignment: the standard library collects in place.
+        self.pixels.into_iter().map(AtomicU32::into_inner).collect()
+    }
+
+    /// Encodes the image as a PNG into `writer` (feature `png`).
+    #[cfg(feature = "png")]
+    pub fn encode_png<W: std::io::Write>(&self, writer: W) -> Result<(), png::EncodingError> {
+        let bytes: Vec<u8> = self
+            .pixels
+            .iter()
+            .flat_map(|p| p.load(Ordering::Relaxed).to_ne_bytes())
+            .collect();
+        crate::image_out::encode_rgba8(writer, self.width, self.height, &bytes)
+    }
+}

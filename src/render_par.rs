@@ -1,0 +1,71 @@
+//! The threaded renderer (feature `rayon`): the scalar tracer's
+//! [`render_pixel`] over the framebuffer's parallel pixel iterator, one row
+//! per unit of work.
+
+use rayon::iter::{IndexedParallelIterator, ParallelIterator};
+
+use crate::camera::Camera;
+use crate::framebuffer::Framebuffer;
+use crate::render::{render_pixel, RayStats, Rect};
+use crate::scene::Scene;
+use crate::shade::RenderOptions;
+use crate::Error;
+
+/// Renders the crop `region` of `camera`'s frame into `frame` on the current
+/// rayon pool: pixel `(x, y)` of `frame` is pixel `(region.x + x,
+/// region.y + y)` of the frame, byte-identical to the scalar
+/// [`crate::render_region`] for any number of threads.
+///
+/// `frame` must be exactly `region.width x region.height`
+/// ([`Error::SizeMismatch`] otherwise). Allocates nothing beyond rayon's
+/// own job bookkeeping.
+pub fn render_parallel<S: Scene + Sync + ?Sized>(
+    scene: &S,
+    camera: &Camera,
+    options: &RenderOptions,
+    region: Rect,
+    frame: &Framebuffer,
+) -> Result<RayStats, Error> {
+    render_parallel_with_progress(scene, camera, options, region, frame, &|_| {})
+}
+
+/// [`render_parallel`], calling `rows_done(1)` from a worker thread each time
+/// a row is finished (for a progress bar; keep it cheap).
+pub fn render_parallel_with_progress<S, P>(
+    scene: &S,
+    camera: &Camera,
+    options: &RenderOptions,
+    region: Rect,
+    frame: &Framebuffer,
+    rows_done: &P,
+) -> Result<RayStats, Error>
+where
+    S: Scene + Sync + ?Sized,
+    P: Fn(u32) + Sync + ?Sized,
+{
+    region.validate(camera)?;
+    let actual = (frame.width(), frame.height());
+    if actual != (region.width, region.height) {
+        return Err(Error::SizeMismatch {
+            expected: (region.width, region.height),
+            actual,
+        });
+    }
+    // A chunk of `width` pixels starting at a multiple of `width` is exactly
+    // one row: rays that are neighbours on screen stay on one thread and walk
+    // the same nodes while they are in cache.
+    let stats = frame
+        .par_pixels()
+        .fold_chunks(region.width as usize, RayStats::default, |stats, p| {
+            let (x, y) = (region.x + p.x, region.y + p.y);
+            let (rgba, rays) = render_pixel(scene, camera, options, x, y);
+            p.set(rgba);
+            stats + rays
+        })
+        .map(|row| {
+            rows_done(1);
+            row
+        })
+        .reduce(RayStats::default, |a, b| a + b);
+    Ok(stats)
+}

@@ -1,0 +1,253 @@
+//! Invariant 2: a render on any number of threads is byte-identical to the
+//! scalar single-threaded render, and so is any crop to the same pixels of
+//! the full frame. Parallel builds equal sequential builds.
+
+mod common;
+
+use common::sources::speckle;
+use proptest::prelude::*;
+use voxtrace::glam::{IVec3, Vec3};
+use voxtrace::rayon::prelude::*;
+use voxtrace::rayon::{ThreadPool, ThreadPoolBuilder};
+use voxtrace::{
+    render, render_parallel, render_region, Camera, CameraSettings, DenseScene, Error, Framebuffer,
+    IAabb, OctreeScene, RayStats, Rect, RenderOptions, Scene, VoxelGenerator,
+};
+
+fn pool(threads: usize) -> ThreadPool {
+    ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a local pool")
+}
+
+fn camera(width: u32, height: u32, lookfrom: Vec3) -> Camera {
+    Camera::new(CameraSettings {
+        width,
+        height,
+        lookfrom,
+        ..CameraSettings::default()
+    })
+    .unwrap()
+}
+
+fn scalar(scene: &impl Scene, camera: &Camera, options: &RenderOptions) -> (Vec<u32>, RayStats) {
+    let mut pixels = vec![0; (camera.width() * camera.height()) as usize];
+    let stats = render(scene, camera, options, &mut pixels).unwrap();
+    (pixels, stats)
+}
+
+fn parallel(
+    pool: &ThreadPool,
+    scene: &(impl Scene + Sync),
+    camera: &Camera,
+    options: &RenderOptions,
+    region: Rect,
+) -> (Vec<u32>, RayStats) {
+    let frame = Framebuffer::new(region.width, region.height).unwrap();
+    let stats = pool
+        .install(|| render_parallel(scene, camera, options, region, &frame))
+        .unwrap();
+    (frame.into_pixels(), stats)
+}
+
+#[test]
+fn threaded_renders_equal_the_scalar_render_for_1_2_3_and_8_threads() {
+    let terrain = VoxelGenerator::new(11);
+    let bounds = IAabb::centered(48);
+    let dense = DenseScene::build(&terrain, bounds).unwrap();
+    let octree = OctreeScene::build(&terrain, bounds).unwrap();
+    let pools: Vec<ThreadPool> = [1, 2, 3, 8].into_iter().map(pool).collect();
+    // Odd sizes, so rows do not split evenly between threads; a camera over
+    // the terrain and one inside the volume; shaded and flat.
+    let cameras = [
+        camera(131, 67, Vec3::new(60.0, 75.0, 45.0)),
+        camera(64, 97, Vec3::new(-20.0, 30.0, 38.0)),
+    ];
+    let mut hits = 0;
+    for camera in &cameras {
+        for flat in [false, true] {
+            let options = RenderOptions { flat };
+            let (expected, expected_stats) = scalar(&dense, camera, &options);
+            assert_eq!(scalar(&octree, camera, &options).0, expected);
+            hits += expected_stats.primary_hits;
+            for pool in &pools {
+                let full = Rect::full(camera);
+                let threads = pool.current_num_threads();
+                let (pixels, stats) = parallel(pool, &dense, camera, &options, full);
+                assert!(pixels == expected, "dense, {threads} threads, flat {flat}");
+                assert_eq!(stats, expected_stats);
+                let (pixels, stats) = parallel(pool, &octree, camera, &options, full);
+                assert!(pixels == expected, "octree, {threads} threads, flat {flat}");
+                assert_eq!(stats, expected_stats);
+            }
+        }
+    }
+    assert!(hits > 0, "the cameras must see terrain");
+}
+
+/// The pixels of `region` cut out of a full frame.
+fn crop(full: &[u32], frame_width: u32, region: Rect) -> Vec<u32> {
+    let rows = full.chunks_exact(frame_width as usize);
+    rows.skip(region.y as usize)
+        .take(region.height as usize)
+        .flat_map(|row| &row[region.x as usize..(region.x + region.width) as usize])
+        .copied()
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Any crop, scalar or threaded, equals the same pixels of the full frame.
+    #[test]
+    fn crops_equal_the_same_pixels_of_the_full_frame(
+        x in 0u32..90, y in 0u32..50, w in 1u32..90, h in 1u32..50, threads in 1usize..4,
+    ) {
+        let region = Rect { x, y, width: w.min(90 - x), height: h.min(50 - y) };
+        let source = speckle(5, 3);
+        let scene = OctreeScene::build(&source, IAabb::centered(12)).unwrap();
+        let camera = camera(90, 50, Vec3::new(20.0, 15.0, 25.0));
+        let options = RenderOptions::default();
+        let (full, _) = scalar(&scene, &camera, &options);
+        let expected = crop(&full, 90, region);
+
+        let mut pixels = vec![0; (region.width * region.height) as usize];
+        let stats = render_region(&scene, &camera, &options, region, &mut pixels).unwrap();
+        prop_assert_eq!(&pixels, &expected);
+        prop_assert_eq!(stats.primary_rays, u64::from(region.width * region.height));
+        let (pixels, threaded_stats) = parallel(&pool(threads), &scene, &camera, &options, region);
+        prop_assert_eq!(&pixels, &expected);
+        prop_assert_eq!(threaded_stats, stats);
+    }
+
+    /// The parallel pixel iterator yields every pixel once, with its own
+    /// coordinates, in row-major order, however rayon splits it.
+    #[test]
+    fn par_pixels_yields_each_pixel_once_with_its_coordinates(
+        width in 1u32..40, height in 1u32..40, max_len in 1usize..50, threads in 1usize..4,
+    ) {
+        let frame = Framebuffer::new(width, height).unwrap();
+        let seen: Vec<(u32, u32)> = pool(threads).install(|| {
+            frame
+                .par_pixels()
+                .with_max_len(max_len)
+                .map(|p| {
+                    // Tag each pixel with its own index, so that a reference
+                    // to the wrong pixel shows up below.
+                    p.set(p.y * width + p.x);
+                    (p.x, p.y)
+                })
+                .collect()
+        });
+        let expected: Vec<(u32, u32)> =
+            (0..height).flat_map(|y| (0..width).map(move |x| (x, y))).collect();
+        prop_assert_eq!(&seen, &expected);
+        let tags = frame.into_pixels();
+        prop_assert!(tags.iter().enumerate().all(|(i, &tag)| tag as usize == i));
+    }
+}
+
+#[test]
+fn sequential_pixel_refs_match_the_parallel_ones_from_both_ends() {
+    let frame = Framebuffer::new(7, 5).unwrap();
+    let forward: Vec<(u32, u32)> = frame.pixel_refs().map(|p| (p.x, p.y)).collect();
+    let parallel: Vec<(u32, u32)> = frame.par_pixels().map(|p| (p.x, p.y)).collect();
+    assert_eq!(forward, parallel);
+    let mut backward: Vec<(u32, u32)> = frame.pixel_refs().rev().map(|p| (p.x, p.y)).collect();
+    backward.reverse();
+    assert_eq!(backward, forward);
+    assert_eq!(frame.pixel_refs().len(), 35);
+}
+
+#[test]
+fn parallel_builds_equal_sequential_builds() {
+    // Sizes below, at and above the parallel build's 64^3 task cubes; the
+    // terrain (classified, mostly uniform) and speckle (packed bricks, odd
+    // bounds).
+    let terrain = VoxelGenerator::new(3);
+    let speckled = speckle(9, 30);
+    let cases = [
+        IAabb::centered(20),
+        IAabb::centered(32),
+        IAabb::centered(100),
+        IAabb::new(IVec3::new(-70, -5, 3), IVec3::new(61, 90, 150)),
+    ];
+    for threads in [1, 2, 3] {
+        let pool = pool(threads);
+        for bounds in cases {
+            let octree = OctreeScene::build(&terrain, bounds).unwrap();
+            let par = pool.install(|| OctreeScene::build_parallel(&terrain, bounds).unwrap());
+            assert!(
+                octree == par,
+                "terrain octree {bounds:?}, {threads} threads"
+            );
+            let dense = DenseScene::build(&terrain, bounds).unwrap();
+            let par = pool.install(|| DenseScene::build_parallel(&terrain, bounds).unwrap());
+            assert!(dense == par, "terrain dense {bounds:?}, {threads} threads");
+        }
+        let bounds = IAabb::new(IVec3::new(-40, -9, -70), IVec3::new(90, 50, 11));
+        let octree = OctreeScene::build(&speckled, bounds).unwrap();
+        let par = pool.install(|| OctreeScene::build_parallel(&speckled, bounds).unwrap());
+        assert!(octree == par, "speckled octree, {threads} threads");
+        assert!(
+            octree.len().materials > 0,
+            "packed bricks must be exercised"
+        );
+        let dense = DenseScene::build(&speckled, bounds).unwrap();
+        let par = pool.install(|| DenseScene::build_parallel(&speckled, bounds).unwrap());
+        assert!(dense == par, "speckled dense, {threads} threads");
+    }
+}
+
+#[test]
+fn framebuffer_rejects_bad_sizes_and_keeps_to_its_bounds() {
+    assert_eq!(Framebuffer::new(0, 3).unwrap_err(), Error::ZeroSize);
+    assert_eq!(Framebuffer::new(3, 0).unwrap_err(), Error::ZeroSize);
+    let frame = Framebuffer::new(4, 3).unwrap();
+    assert!(frame.set(3, 2, 0xdead_beef));
+    assert!(!frame.set(4, 0, 1));
+    assert!(!frame.set(0, 3, 1));
+    assert_eq!(frame.get(3, 2), Some(0xdead_beef));
+    assert_eq!(frame.get(4, 2), None);
+    let mut short = [0u32; 11];
+    assert_eq!(
+        frame.copy_to(&mut short).unwrap_err(),
+        Error::BufferTooSmall {
+            required: 12,
+            actual: 11
+        }
+    );
+    let mut long = [7u32; 13];
+    frame.copy_to(&mut long).unwrap();
+    assert_eq!(long[11], 0xdead_beef);
+    assert_eq!(long[12], 7, "past the image stays untouched");
+}
+
+#[test]
+fn parallel_render_rejects_a_frame_of_the_wrong_size_or_a_region_outside() {
+    let scene = OctreeScene::build(&speckle(1, 10), IAabb::centered(8)).unwrap();
+    let camera = camera(20, 10, Vec3::splat(15.0));
+    let options = RenderOptions::default();
+    let frame = Framebuffer::new(20, 9).unwrap();
+    let full = Rect::full(&camera);
+    assert_eq!(
+        render_parallel(&scene, &camera, &options, full, &frame).unwrap_err(),
+        Error::SizeMismatch {
+            expected: (20, 10),
+            actual: (20, 9)
+        }
+    );
+    let outside = Rect {
+        x: 15,
+        y: 0,
+        width: 6,
+        height: 9,
+    };
+    let frame = Framebuffer::new(6, 9).unwrap();
+    assert!(render_parallel(&scene, &camera, &options, outside, &frame).is_err());
+    assert!(frame
+        .pixels()
+        .iter()
+        .all(|p| p.load(std::sync::atomic::Ordering::Relaxed) == 0));
+}
