@@ -58,6 +58,7 @@ mod math;
 mod noise;
 mod octree;
 mod octree_build;
+mod octree_trace;
 #[cfg(feature = "rayon")]
 mod par_pixels;
 mod render;

@@ -26,6 +26,15 @@ pub(crate) fn floor64(x: f64) -> f64 {
     libm::floor(x)
 }
 
+/// `to_cell(floor32(x))` without a call: truncate, then step down when the
+/// truncation rounded a negative non-integer up. Exactly equal for every
+/// `x`, NaN and infinities included (the subtraction saturates).
+#[inline]
+pub(crate) fn floor_cell(x: f32) -> i32 {
+    let truncated = x as i32;
+    truncated.saturating_sub(i32::from(truncated as f32 > x))
+}
+
 /// Converts a float cell coordinate to `i32`, saturating (NaN becomes 0).
 /// Callers clamp the result into the volume afterwards.
 #[inline]

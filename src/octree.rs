@@ -2,17 +2,15 @@
 //! and address their children by `u32` index; leaves are 4x4x4 bricks held as
 //! one 64-bit occupancy mask.
 //!
-//! The traversal is the shared cell walk (see `walk.rs`), which the octree
-//! speeds up by jumping over every empty node in one move. Because a jump
-//! lands exactly where single steps would, the octree returns the same hits
-//! as the dense array, bit for bit.
+//! The traversal (`octree_trace.rs`) is the shared cell walk (see
+//! `walk.rs`), which the octree speeds up by jumping over every empty node in
+//! one move. Because a jump lands exactly where single steps would, the
+//! octree returns the same hits as the dense array, bit for bit.
 
 use glam::IVec3;
 
-use crate::geom::{Hit, IAabb, Ray};
-use crate::scene::{Scene, Traced};
+use crate::geom::IAabb;
 use crate::voxel::Palette;
-use crate::walk::Walk;
 
 /// Side of a leaf brick: 4x4x4 voxels, one `u64` of occupancy.
 pub(crate) const BRICK: i32 = 4;
@@ -98,20 +96,14 @@ pub struct OctreeScene<N, M> {
     pub(crate) palette: Palette,
 }
 
-/// What a lookup found at a cell.
-enum Probe {
-    Solid(u8),
-    /// The cell lies in this empty cube.
-    Empty {
-        corner: IVec3,
-        size: i32,
-    },
-}
-
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
-    /// The deepest node holding `cell` (inside the root cube).
-    #[inline]
-    fn probe(&self, cell: IVec3) -> Probe {
+    /// The material at `pos` (0 for empty or outside the bounds): a
+    /// descent from the root. (Tracing does not use it: it keeps its path.)
+    #[must_use]
+    pub fn material(&self, pos: IVec3) -> u8 {
+        if !self.bounds.contains(pos) {
+            return 0;
+        }
         let nodes = self.nodes.as_ref();
         let mut node = self.root;
         let mut corner = self.bounds.min;
@@ -120,48 +112,28 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             match node.0 {
                 NodeKind::Branch { children, first } => {
                     size >>= 1;
-                    let upper = (cell - corner).cmpge(IVec3::splat(size));
-                    corner += IVec3::from(upper).min(IVec3::ONE) * size;
+                    let upper = (pos - corner).cmpge(IVec3::splat(size));
+                    corner += IVec3::select(upper, IVec3::splat(size), IVec3::ZERO);
                     let i = octant(upper);
                     if children & (1 << i) == 0 {
-                        return Probe::Empty { corner, size };
+                        return 0;
                     }
                     let rank = (u32::from(children) & ((1 << i) - 1)).count_ones();
                     node = nodes[(first + rank) as usize];
                 }
-                NodeKind::Solid(material) => return Probe::Solid(material),
+                NodeKind::Solid(material) => return material,
                 NodeKind::Brick {
                     occupancy,
                     materials,
                 } => {
-                    let bit = brick_bit(cell - corner);
-                    if occupancy >> bit & 1 == 0 {
-                        return Probe::Empty {
-                            corner: cell,
-                            size: 1,
-                        };
-                    }
-                    return Probe::Solid(match materials {
-                        BrickMaterials::Uniform(m) => m,
-                        BrickMaterials::Packed(offset) => {
-                            let rank = (occupancy & ((1u64 << bit) - 1)).count_ones();
-                            self.materials.as_ref()[(offset + rank) as usize]
-                        }
-                    });
+                    let bit = brick_bit(pos - corner);
+                    return if occupancy >> bit & 1 == 0 {
+                        0
+                    } else {
+                        self.brick_material(occupancy, materials, bit)
+                    };
                 }
             }
-        }
-    }
-
-    /// The material at `pos` (0 for empty or outside the bounds).
-    #[must_use]
-    pub fn material(&self, pos: IVec3) -> u8 {
-        if !self.bounds.contains(pos) {
-            return 0;
-        }
-        match self.probe(pos) {
-            Probe::Solid(m) => m,
-            Probe::Empty { .. } => 0,
         }
     }
 
@@ -184,53 +156,5 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     #[must_use]
     pub fn is_empty(&self) -> bool {
         matches!(self.root.0, NodeKind::Branch { children: 0, .. })
-    }
-}
-
-impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
-    fn bounds(&self) -> IAabb {
-        self.bounds
-    }
-
-    fn trace_counted(&self, ray: &Ray) -> Traced {
-        let Some(mut walk) = Walk::start(ray, &self.bounds) else {
-            return Traced {
-                hit: None,
-                steps: 0,
-            };
-        };
-        loop {
-            let moved = match self.probe(walk.cell()) {
-                Probe::Solid(material) => {
-                    let (face, t) = walk.entry();
-                    let hit = self.palette.voxel(material).map(|voxel| Hit {
-                        pos: walk.cell(),
-                        face,
-                        t,
-                        material,
-                        voxel,
-                    });
-                    return Traced {
-                        hit,
-                        steps: walk.steps(),
-                    };
-                }
-                Probe::Empty { size: 1, .. } => walk.step(),
-                Probe::Empty { corner, size } => walk.leave(corner, size),
-            };
-            if !moved {
-                return Traced {
-                    hit: None,
-                    steps: walk.steps(),
-                };
-            }
-        }
-    }
-
-    fn storage_bytes(&self) -> usize {
-        core::mem::size_of_val(self.nodes.as_ref())
-            + self.materials.as_ref().len()
-            + core::mem::size_of::<Palette>()
-            + core::mem::size_of::<Node>()
     }
 }

@@ -1,6 +1,7 @@
 //! The cell walk shared by every backend: Amanatides & Woo's traversal with
-//! plane crossings recomputed from the origin, one tie rule, and a jump that
-//! leaves a whole empty box in one move.
+//! plane crossings recomputed from the origin, one tie rule, and the two
+//! questions a hierarchy asks of it: where does the ray leave a box, and on
+//! which side of a plane is it.
 //!
 //! # The model
 //! A ray crosses the integer planes of each axis at the times
@@ -12,11 +13,13 @@
 //! therefore steps into the x-neighbour first, then the y-neighbour, and so on.
 //!
 //! The walk's state after any number of steps is exactly "the cell reached
-//! after processing every crossing whose key is below the current one". The
-//! dense backend steps one cell at a time; the octree jumps over empty boxes
-//! with [`Walk::leave`], which lands on the same state the single steps would
-//! reach. Both therefore find the same first solid cell, face and `t`, bit
-//! for bit.
+//! after processing every crossing in key order up to the current one". The
+//! dense backend steps one cell at a time. The octree moves from box to box:
+//! [`Walk::exit_of`] is the key at which the ray leaves an empty box (the
+//! earliest of its far-plane crossings, which single steps would also reach
+//! there), and [`Walk::upper_sides`] says which half of a box the ray is in
+//! at a key, from the same crossings and the same order. Both backends
+//! therefore find the same first solid cell, face and `t`, bit for bit.
 //!
 //! # The start
 //! The ray starts in the cell it is in just after `t = 0`: an origin exactly on
@@ -26,14 +29,14 @@
 //! ray never gets there in `f32`) never happen.
 //!
 //! # The bound
-//! Every step or jump moves the cell forward on at least one axis, and the
-//! walk stops once it leaves the volume, so a walk takes at most
+//! Every step, or move out of a box, crosses a new plane of the volume, and
+//! the walk stops once it leaves the volume, so a walk takes at most
 //! `size.x + size.y + size.z` moves ([`max_steps`]).
 
-use glam::{IVec3, Vec3};
+use glam::{BVec3, IVec3, Vec3};
 
 use crate::geom::{Face, IAabb, Ray};
-use crate::math::{ceil32, floor32, to_cell};
+use crate::math::{ceil32, floor32, floor_cell, to_cell};
 
 /// A crossing's place in the ray's visiting order: by time, then by axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -63,6 +66,27 @@ pub fn max_steps(bounds: &IAabb) -> u32 {
     s.x + s.y + s.z
 }
 
+/// The earliest of three crossings, one per axis; ties go to the lowest
+/// axis. All `+inf` gives `+inf` (on axis 2).
+#[inline]
+fn earliest(t: Vec3) -> Key {
+    let axis = if t.x <= t.y {
+        if t.x <= t.z {
+            0
+        } else {
+            2
+        }
+    } else if t.y <= t.z {
+        1
+    } else {
+        2
+    };
+    Key {
+        t: t[axis],
+        axis: axis as u8,
+    }
+}
+
 /// A ray's walk through the cells of one volume.
 #[derive(Clone, Debug)]
 pub(crate) struct Walk {
@@ -71,6 +95,9 @@ pub(crate) struct Walk {
     inv_dir: Vec3,
     /// +1, -1, or 0 for an axis the ray does not move along.
     step: IVec3,
+    /// Lanes of `step` that are +1, and that are not 0.
+    up: BVec3,
+    moving: BVec3,
     /// The cell the ray is in just after t = 0.
     start: IVec3,
     /// Key of the crossing into `start` on each axis: `(0, axis)` when the
@@ -142,6 +169,8 @@ impl Walk {
             key: Key::BEFORE,
             next_t: [f32::INFINITY; 3],
             steps: 0,
+            up: step.cmpgt(IVec3::ZERO),
+            moving: step.cmpne(IVec3::ZERO),
         };
         walk.enter()?;
         Some(walk)
@@ -189,7 +218,7 @@ impl Walk {
                 };
                 let inside = (self.lo[b]..self.hi[b]).contains(&self.start[b]);
                 let from = if inside { self.start[b] } else { near };
-                self.cell[b] = self.settle(b, from, far + s, key_in);
+                self.cell[b] = self.settle(b, from, far + s, key_in).0;
             }
             if !self.inside() {
                 return None;
@@ -230,22 +259,25 @@ impl Walk {
 
     /// The coordinate on moving axis `axis` (not the axis of `key`) that the
     /// ray is in at `key`: the one with `entry < key < exit`, searched from
-    /// `from` forward, stopping at `limit`. Starts from the coordinate of the
-    /// point at `key.t`, then corrects it with exact key comparisons, so the
-    /// answer is the one single steps would reach.
-    fn settle(&self, axis: usize, from: i32, limit: i32, key: Key) -> i32 {
+    /// `from` forward, stopping at `limit`; and the time of its exit
+    /// crossing. Starts from the coordinate of the point at `key.t`, then
+    /// corrects it with exact key comparisons, so the answer is the one
+    /// single steps would reach.
+    fn settle(&self, axis: usize, from: i32, limit: i32, key: Key) -> (i32, f32) {
         let s = self.step[axis];
         let span = i64::from(limit - from) * i64::from(s);
-        let guess = to_cell(floor32(self.origin[axis] + key.t * self.dir[axis]));
+        let guess = floor_cell(self.origin[axis] + key.t * self.dir[axis]);
         let ahead = ((i64::from(guess) - i64::from(from)) * i64::from(s)).clamp(0, span);
         let mut c = from + (ahead as i32) * s;
         while c != from && !self.entry_key(axis, c).lt(key) {
             c -= s;
         }
-        while c != limit && self.crossing(axis, self.exit_plane(axis, c)).lt(key) {
+        let mut exit = self.crossing(axis, self.exit_plane(axis, c));
+        while c != limit && exit.lt(key) {
             c += s;
+            exit = self.crossing(axis, self.exit_plane(axis, c));
         }
-        c
+        (c, exit.t)
     }
 
     fn inside(&self) -> bool {
@@ -275,96 +307,90 @@ impl Walk {
         self.steps
     }
 
+    /// The key of the crossing that entered the current cell.
+    #[inline]
+    pub(crate) fn key(&self) -> Key {
+        self.key
+    }
+
     /// The entry face of the current cell (`None` for a start cell the ray
     /// is strictly inside of) and the distance to it.
     pub(crate) fn entry(&self) -> (Option<Face>, f32) {
-        if self.key.t == f32::NEG_INFINITY {
+        self.entry_at(self.key)
+    }
+
+    /// The face and distance of the crossing `key` (`None` and 0 for
+    /// [`Key::BEFORE`]).
+    #[inline]
+    pub(crate) fn entry_at(&self, key: Key) -> (Option<Face>, f32) {
+        if key.t == f32::NEG_INFINITY {
             (None, 0.0)
         } else {
-            let axis = self.key.axis as usize;
-            (Some(Face::entered(axis, self.step[axis] > 0)), self.key.t)
+            let axis = key.axis as usize;
+            (Some(Face::entered(axis, self.step[axis] > 0)), key.t)
         }
+    }
+
+    /// The first crossing out of the box `[lo, hi)` for a ray that is
+    /// inside it: the earliest key among the far planes of the moving axes
+    /// (`+inf` if none is ever reached). The same arithmetic as single steps,
+    /// on three lanes at once.
+    #[inline]
+    pub(crate) fn exit_of(&self, lo: IVec3, hi: IVec3) -> Key {
+        let far = IVec3::select(self.up, hi, lo).as_vec3();
+        let t = Vec3::select(
+            self.moving,
+            (far - self.origin) * self.inv_dir,
+            Vec3::INFINITY,
+        );
+        earliest(t)
+    }
+
+    /// Whether the ray moves toward `+axis`.
+    #[inline]
+    pub(crate) fn moves_up(&self, axis: usize) -> bool {
+        self.step[axis] > 0
+    }
+
+    /// For each axis, whether the cell the walk is in just after crossing
+    /// `key` lies at or above that axis' lane of `planes`, for planes
+    /// strictly inside a box the walk entered at `key` (never the plane of
+    /// `key` itself). Planes behind the start are decided by the start cell,
+    /// as the start rule says; planes ahead are crossed when their key comes
+    /// strictly first. (A plane of `key`'s own axis with an equal key lies
+    /// beyond the entry plane: single steps reach it only after entering.)
+    #[inline]
+    pub(crate) fn upper_sides(&self, planes: IVec3, key: Key) -> BVec3 {
+        let t = (planes.as_vec3() - self.origin) * self.inv_dir;
+        let lane = IVec3::new(0, 1, 2).cmplt(IVec3::splat(i32::from(key.axis)));
+        let crossed = t.cmplt(Vec3::splat(key.t)) | (t.cmpeq(Vec3::splat(key.t)) & lane);
+        let behind_start = planes.cmple(self.start);
+        // Moving up: above once crossed; moving down: above until crossed;
+        // not moving: where the start is.
+        let up = self.up & self.moving;
+        let down = !self.up & self.moving;
+        (up & (behind_start | crossed))
+            | (down & behind_start & !crossed)
+            | (!self.moving & behind_start)
     }
 
     /// Steps to the next cell. Returns `false` when the ray leaves the volume
     /// (or never reaches another plane).
     #[inline]
     pub(crate) fn step(&mut self) -> bool {
-        let t = self.next_t;
-        // The earliest crossing; ties go to the lowest axis.
-        let axis = if t[0] <= t[1] {
-            if t[0] <= t[2] {
-                0
-            } else {
-                2
-            }
-        } else if t[1] <= t[2] {
-            1
-        } else {
-            2
-        };
-        if t[axis] == f32::INFINITY {
+        let key = earliest(Vec3::from_array(self.next_t));
+        if key.t == f32::INFINITY {
             return false;
         }
         self.steps += 1;
-        self.key = Key {
-            t: t[axis],
-            axis: axis as u8,
-        };
+        self.key = key;
+        let axis = usize::from(key.axis);
         let c = self.cell[axis] + self.step[axis];
         if c < self.lo[axis] || c >= self.hi[axis] {
             return false;
         }
         self.cell[axis] = c;
         self.next_t[axis] = self.crossing(axis, self.exit_plane(axis, c)).t;
-        true
-    }
-
-    /// Leaves the empty cube `[corner, corner + size)^3` that holds the
-    /// current cell, landing exactly where single steps would. Returns
-    /// `false` when the ray leaves the volume on the way.
-    pub(crate) fn leave(&mut self, corner: IVec3, size: i32) -> bool {
-        let mut exit = Key {
-            t: f32::INFINITY,
-            axis: 3,
-        };
-        for axis in 0..3 {
-            if self.step[axis] != 0 {
-                let plane = if self.step[axis] > 0 {
-                    corner[axis] + size
-                } else {
-                    corner[axis]
-                };
-                let key = self.crossing(axis, plane);
-                if key.lt(exit) {
-                    exit = key;
-                }
-            }
-        }
-        if exit.t == f32::INFINITY {
-            return false;
-        }
-        self.steps += 1;
-        let a = exit.axis as usize;
-        for b in (0..3).filter(|&b| b != a && self.step[b] != 0) {
-            let s = self.step[b];
-            let last = if s > 0 {
-                corner[b] + size - 1
-            } else {
-                corner[b]
-            };
-            self.cell[b] = self.settle(b, self.cell[b], last, exit);
-        }
-        self.cell[a] = if self.step[a] > 0 {
-            corner[a] + size
-        } else {
-            corner[a] - 1
-        };
-        if !self.inside() {
-            return false;
-        }
-        self.key = exit;
-        self.refresh_next();
         true
     }
 }

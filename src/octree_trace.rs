@@ -1,0 +1,179 @@
+//! Tracing an `OctreeScene`: the shared cell walk, with the octree telling
+//! it how far it may jump.
+//!
+//! At every cell the walk reaches, the tracer finds the deepest node holding
+//! it. It keeps the path of nodes from the root down to the last one it
+//! found, and restarts from the deepest node whose cube still holds the new
+//! cell (the highest bit in which the old and new cell coordinates differ
+//! says which), instead of from the root. An empty cube, whether an absent
+//! child or an empty 2x2x2 group of a brick, is left in one move with
+//! [`Walk::leave`], which lands exactly where single steps would, so the hits
+//! are the dense array's, bit for bit.
+
+use glam::IVec3;
+
+use crate::geom::{Hit, IAabb, Ray, MAX_COORD};
+use crate::octree::{brick_bit, BrickMaterials, Node, NodeKind, OctreeScene};
+use crate::scene::{Scene, Traced};
+use crate::walk::{Key, Walk};
+
+/// Entries of the path: the largest root has side `2 * MAX_COORD` = 2^23,
+/// and halving it down to side-4 bricks takes depths 0 to 21.
+const MAX_DEPTH: usize = (2 * MAX_COORD as u32).trailing_zeros() as usize - 1;
+
+/// Occupancy bits of the 2x2x2 group at the brick's local origin: `x | y << 2
+/// | z << 4` for `x, y, z` in `{0, 1}`.
+const GROUP: u64 = 0x0033_0033;
+
+impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
+    fn bounds(&self) -> IAabb {
+        self.bounds
+    }
+
+    fn trace_counted(&self, ray: &Ray) -> Traced {
+        let Some(walk) = Walk::start(ray, &self.bounds) else {
+            return Traced {
+                hit: None,
+                steps: 0,
+            };
+        };
+        let min = self.bounds.min;
+        let leaves_bounds = walk.exit_of(self.bounds.min, self.bounds.max);
+        let size = self.bounds.size();
+        let nodes = self.nodes.as_ref();
+        let root_log = self.root_size.trailing_zeros();
+        // path[d] (d >= 1): index of the node at depth d holding the
+        // position, whose cube has side 2^(root_log - d); valid to `depth`.
+        let mut path = [0u32; MAX_DEPTH];
+        let mut depth = 0;
+        // The position: the ray is, at `key`, in the cube of side
+        // 2^known_log at `corner` (relative to `min`, where every cube of
+        // the tree starts at a multiple of its side).
+        let mut key = walk.key();
+        let mut corner = walk.cell() - min;
+        let mut known_log = 0;
+        let mut steps = 0;
+        loop {
+            // Down from `depth` to the deepest node holding the position;
+            // the empty cube found there has side 2^empty_log.
+            let empty_log = loop {
+                let node = if depth == 0 {
+                    self.root
+                } else {
+                    nodes[path[depth] as usize]
+                };
+                match node.0 {
+                    NodeKind::Branch { children, first } => {
+                        let half_log = root_log - depth as u32 - 1;
+                        refine(&walk, key, min, &mut corner, &mut known_log, half_log);
+                        let upper = (corner >> half_log) & 1;
+                        let octant = (upper.x | upper.y << 1 | upper.z << 2) as u32;
+                        if children & (1 << octant) == 0 {
+                            break half_log;
+                        }
+                        let rank = (u32::from(children) & ((1 << octant) - 1)).count_ones();
+                        depth += 1;
+                        path[depth] = first + rank;
+                    }
+                    NodeKind::Solid(material) => {
+                        refine(&walk, key, min, &mut corner, &mut known_log, 0);
+                        return self.hit(&walk, key, min + corner, material, steps);
+                    }
+                    NodeKind::Brick {
+                        occupancy,
+                        materials,
+                    } => {
+                        refine(&walk, key, min, &mut corner, &mut known_log, 1);
+                        if occupancy & GROUP << brick_bit(corner & 2) == 0 {
+                            break 1;
+                        }
+                        refine(&walk, key, min, &mut corner, &mut known_log, 0);
+                        let bit = brick_bit(corner & 3);
+                        if occupancy >> bit & 1 == 0 {
+                            break 0;
+                        }
+                        let material = self.brick_material(occupancy, materials, bit);
+                        return self.hit(&walk, key, min + corner, material, steps);
+                    }
+                }
+            };
+            // Leave the empty cube through its first far-plane crossing.
+            let cube = corner >> empty_log << empty_log;
+            let side = 1 << empty_log;
+            let exit = walk.exit_of(min + cube, min + cube + side);
+            steps += 1;
+            if exit.t == f32::INFINITY {
+                // No plane of the cube is ever reached in f32.
+                return Traced { hit: None, steps };
+            }
+            let axis = exit.axis as usize;
+            corner = cube;
+            corner[axis] += if walk.moves_up(axis) { side } else { -side };
+            // Left the volume? On the volume's own exit axis, by position:
+            // far from the origin several planes of one axis can share a key,
+            // and they are still crossed in order.
+            let left = if usize::from(leaves_bounds.axis) == axis {
+                !(0..size[axis]).contains(&corner[axis])
+            } else {
+                leaves_bounds.lt(exit)
+            };
+            if left {
+                return Traced { hit: None, steps };
+            }
+            known_log = empty_log;
+            // The nodes whose cubes are wider than every changed bit still
+            // hold the new position.
+            let changed = (corner[axis] ^ cube[axis]) as u32;
+            let keep = (root_log - (u32::BITS - changed.leading_zeros())) as usize;
+            depth = depth.min(keep);
+            key = exit;
+        }
+    }
+
+    fn storage_bytes(&self) -> usize {
+        core::mem::size_of_val(self.nodes.as_ref())
+            + self.materials.as_ref().len()
+            + core::mem::size_of::<crate::voxel::Palette>()
+            + core::mem::size_of::<Node>()
+    }
+}
+
+impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
+    /// The material of occupied bit `bit` of a brick.
+    #[inline]
+    pub(crate) fn brick_material(&self, occupancy: u64, materials: BrickMaterials, bit: u32) -> u8 {
+        match materials {
+            BrickMaterials::Uniform(m) => m,
+            BrickMaterials::Packed(offset) => {
+                // Materials are stored in bit order: the rank is the index.
+                let rank = (occupancy & ((1u64 << bit) - 1)).count_ones();
+                self.materials.as_ref()[(offset + rank) as usize]
+            }
+        }
+    }
+
+    fn hit(&self, walk: &Walk, key: Key, pos: IVec3, material: u8, steps: u32) -> Traced {
+        let (face, t) = walk.entry_at(key);
+        let hit = self.palette.voxel(material).map(|voxel| Hit {
+            pos,
+            face,
+            t,
+            material,
+            voxel,
+        });
+        Traced { hit, steps }
+    }
+}
+
+/// Narrows the position from a cube of side 2^known_log to the one of side
+/// 2^to_log holding the ray at `key`, halving once per level and deciding
+/// each axis' half by the side of the midplane the ray is on.
+#[inline]
+fn refine(walk: &Walk, key: Key, min: IVec3, corner: &mut IVec3, known_log: &mut u32, to_log: u32) {
+    while *known_log > to_log {
+        *known_log -= 1;
+        let half = IVec3::splat(1 << *known_log);
+        let upper = walk.upper_sides(min + *corner + half, key);
+        *corner += IVec3::select(upper, half, IVec3::ZERO);
+    }
+}
