@@ -19,6 +19,21 @@ use crate::Error;
 /// `frame` must be exactly `region.width x region.height`
 /// ([`Error::SizeMismatch`] otherwise). Allocates nothing beyond rayon's
 /// own job bookkeeping.
+///
+/// ```
+/// use voxtrace::{render_parallel, Camera, CameraSettings, Framebuffer, IAabb};
+/// use voxtrace::{OctreeScene, Rect, RenderOptions, VoxelGenerator};
+///
+/// let scene = OctreeScene::build(&VoxelGenerator::new(1), IAabb::centered(32))?;
+/// let camera = Camera::new(CameraSettings { width: 64, height: 36, ..Default::default() })?;
+/// let frame = Framebuffer::new(64, 36)?;
+/// let pool = voxtrace::rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+/// let region = Rect::full(&camera);
+/// let stats = pool.install(|| render_parallel(&scene, &camera, &RenderOptions::default(), region, &frame))?;
+/// assert_eq!(stats.primary_rays, 64 * 36);
+/// let pixels: Vec<u32> = frame.into_pixels(); // the layout `render` writes
+/// # Ok::<(), voxtrace::Error>(())
+/// ```
 pub fn render_parallel<S: Scene + Sync + ?Sized>(
     scene: &S,
     camera: &Camera,
