@@ -251,3 +251,21 @@ fn parallel_render_rejects_a_frame_of_the_wrong_size_or_a_region_outside() {
         .iter()
         .all(|p| p.load(std::sync::atomic::Ordering::Relaxed) == 0));
 }
+
+#[test]
+fn framebuffer_png_equals_the_png_of_its_pixels() {
+    let frame = Framebuffer::new(5, 3).unwrap();
+    for p in frame.pixel_refs() {
+        p.set(voxtrace::pack(voxtrace::glam::U8Vec3::new(
+            p.x as u8 * 40,
+            p.y as u8 * 80,
+            7,
+        )));
+    }
+    let mut direct = Vec::new();
+    frame.encode_png(&mut direct).unwrap();
+    let mut via_pixels = Vec::new();
+    voxtrace::encode_png(&mut via_pixels, 5, 3, &frame.into_pixels()).unwrap();
+    assert!(direct == via_pixels);
+    assert_eq!(&direct[1..4], b"PNG");
+}
