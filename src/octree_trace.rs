@@ -1,14 +1,18 @@
-//! Tracing an `OctreeScene`: the shared cell walk, with the octree telling
-//! it how far it may jump.
+//! Tracing an `OctreeScene`: the shared cell walk, taken a box at a time.
 //!
-//! At every cell the walk reaches, the tracer finds the deepest node holding
-//! it. It keeps the path of nodes from the root down to the last one it
-//! found, and restarts from the deepest node whose cube still holds the new
-//! cell (the highest bit in which the old and new cell coordinates differ
-//! says which), instead of from the root. An empty cube, whether an absent
-//! child or an empty 2x2x2 group of a brick, is left in one move with
-//! [`Walk::leave`], which lands exactly where single steps would, so the hits
-//! are the dense array's, bit for bit.
+//! The tracer holds a position: the ray is, at the key it entered by, in a
+//! cube of the tree's grid. Inside a branch it finds the child holding the
+//! ray by comparing the midplanes' crossing keys with that key
+//! ([`Walk::upper_sides`]); an empty cube, whether an absent child or an
+//! empty 2x2x2 group of a brick, it leaves at the earliest key of its far
+//! planes ([`Walk::exit_of`]), stepping to the neighbouring cube of the same
+//! size. Both questions use the crossings and the order single steps use,
+//! so the hit is the dense array's, bit for bit, without ever estimating a
+//! cell coordinate.
+//!
+//! It keeps the path of node indices from the root and, after each move,
+//! restarts from the deepest node whose cube still holds the position (the
+//! highest coordinate bit the move changed says which), not from the root.
 
 use glam::IVec3;
 
