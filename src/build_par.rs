@@ -10,7 +10,7 @@ use crate::dense::DenseScene;
 use crate::geom::IAabb;
 use crate::octree::{BrickMaterials, Node, NodeKind, OctreeScene};
 use crate::octree_build::{child_offset, push_vec, root_size, shortcut, Builder, Cube, VecSink};
-use crate::storage::{try_grow, try_vec};
+use crate::storage::try_grow;
 use crate::voxel::VoxelSource;
 use crate::Error;
 
@@ -21,23 +21,20 @@ impl DenseScene<Vec<u8>> {
         source: &S,
         bounds: IAabb,
     ) -> Result<Self, Error> {
-        let len = DenseScene::required_len(bounds)?;
-        let mut cells = try_vec::<u8>(len)?;
-        cells.resize(len, 0);
-        let slice_len = (bounds.size().x * bounds.size().y) as usize;
-        cells
-            .par_chunks_mut(slice_len)
-            .zip(bounds.min.z..bounds.max.z)
-            .for_each(|(slice, z)| {
-                let min = IVec3::new(bounds.min.x, bounds.min.y, z);
-                let max = IVec3::new(bounds.max.x, bounds.max.y, z + 1);
-                source.fill_box(IAabb::new(min, max), slice);
-            });
-        Ok(DenseScene::from_parts(
-            bounds,
-            cells,
-            source.palette().clone(),
-        ))
+        DenseScene::build_with(source, bounds, |cells| {
+            // In usize: the bounds are validated, and one slice is at most
+            // the volume, which fits, while x * y may not fit in i32.
+            let size = bounds.size().as_uvec3();
+            let slice_len = size.x as usize * size.y as usize;
+            cells
+                .par_chunks_mut(slice_len)
+                .zip(bounds.min.z..bounds.max.z)
+                .for_each(|(slice, z)| {
+                    let min = IVec3::new(bounds.min.x, bounds.min.y, z);
+                    let max = IVec3::new(bounds.max.x, bounds.max.y, z + 1);
+                    source.fill_box(IAabb::new(min, max), slice);
+                });
+        })
     }
 }
 
@@ -75,20 +72,13 @@ impl OctreeScene<Vec<Node>, Vec<u8>> {
         let mut parts = parts.into_iter();
         let mut builder = Builder::new(source, bounds, VecSink::default());
         let root = assemble(&mut builder, &mut parts, bounds.min, size)?.unwrap_or(Node::EMPTY);
-        let VecSink {
-            mut nodes,
-            mut materials,
-        } = builder.sink;
-        nodes.shrink_to_fit();
-        materials.shrink_to_fit();
-        Ok(OctreeScene {
+        Ok(Self::from_sink(
             bounds,
             root,
-            root_size: size,
-            nodes,
-            materials,
-            palette: source.palette().clone(),
-        })
+            size,
+            builder.sink,
+            source.palette(),
+        ))
     }
 }
 

@@ -73,15 +73,22 @@ impl DenseScene<alloc::vec::Vec<u8>> {
     /// Builds the scene in a new vector, reserved with `try_reserve`: a volume
     /// too large for memory is [`Error::OutOfMemory`], never an abort.
     pub fn build<S: VoxelSource + ?Sized>(source: &S, bounds: IAabb) -> Result<Self, Error> {
+        Self::build_with(source, bounds, |cells| source.fill_box(bounds, cells))
+    }
+
+    /// Allocates the zeroed cells of `bounds` (fallibly) and lets `fill`
+    /// write them: the one allocation path of the sequential and parallel
+    /// builds.
+    pub(crate) fn build_with<S: VoxelSource + ?Sized>(
+        source: &S,
+        bounds: IAabb,
+        fill: impl FnOnce(&mut [u8]),
+    ) -> Result<Self, Error> {
         let len = DenseScene::required_len(bounds)?;
         let mut cells = crate::storage::try_vec::<u8>(len)?;
         cells.resize(len, 0);
-        source.fill_box(bounds, &mut cells);
-        Ok(Self {
-            bounds,
-            cells,
-            palette: source.palette().clone(),
-        })
+        fill(&mut cells);
+        Ok(Self::from_parts(bounds, cells, source.palette().clone()))
     }
 }
 

@@ -352,19 +352,36 @@ impl OctreeScene<alloc::vec::Vec<Node>, alloc::vec::Vec<u8>> {
     /// out of memory is [`Error::OutOfMemory`], never an abort.
     pub fn build<S: VoxelSource + ?Sized>(source: &S, bounds: IAabb) -> Result<Self, Error> {
         let (root, root_size, sink) = build_root(source, bounds, VecSink::default())?;
+        Ok(Self::from_sink(
+            bounds,
+            root,
+            root_size,
+            sink,
+            source.palette(),
+        ))
+    }
+
+    /// The scene over a finished sink, its vectors trimmed to their length.
+    pub(crate) fn from_sink(
+        bounds: IAabb,
+        root: Node,
+        root_size: i32,
+        sink: VecSink,
+        palette: &crate::voxel::Palette,
+    ) -> Self {
         let VecSink {
             mut nodes,
             mut materials,
         } = sink;
         nodes.shrink_to_fit();
         materials.shrink_to_fit();
-        Ok(OctreeScene {
+        OctreeScene {
             bounds,
             root,
             root_size,
             nodes,
             materials,
-            palette: source.palette().clone(),
-        })
+            palette: palette.clone(),
+        }
     }
 }

@@ -143,7 +143,7 @@ impl Walk {
             start[axis] = if step[axis] < 0 {
                 to_cell(ceil32(o) - 1.0)
             } else {
-                to_cell(floor32(o))
+                floor_cell(o)
             };
             // The start cell's entry plane is floor(o) moving up, ceil(o)
             // moving down: the origin lies on it exactly when it is an
@@ -367,9 +367,8 @@ impl Walk {
         let behind_start = planes.cmple(self.start);
         // Moving up: above once crossed; moving down: above until crossed;
         // not moving: where the start is.
-        let up = self.up & self.moving;
-        let down = !self.up & self.moving;
-        (up & (behind_start | crossed))
+        let down = self.moving & !self.up;
+        (self.up & (behind_start | crossed))
             | (down & behind_start & !crossed)
             | (!self.moving & behind_start)
     }
