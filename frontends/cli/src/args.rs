@@ -2,19 +2,10 @@
 
 use std::path::PathBuf;
 
-use clap::{Parser, ValueEnum};
+use clap::Parser;
 use voxtrace::glam::Vec3;
 use voxtrace::Rect;
-
-/// Which storage holds the voxels.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Backend {
-    /// Flat array, one byte per voxel, Amanatides & Woo traversal.
-    Dense,
-    /// Sparse pointer-free octree (alias: sparse).
-    #[value(alias = "sparse")]
-    Octree,
-}
+use voxtrace_cli::Backend;
 
 /// Render the seeded Perlin terrain of the voxtrace paper to a PNG.
 #[derive(Debug, Parser)]

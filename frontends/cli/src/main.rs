@@ -14,13 +14,10 @@ use std::time::Instant;
 
 use clap::Parser;
 use voxtrace::glam::Vec3;
-use voxtrace::rayon::ThreadPoolBuilder;
-use voxtrace::{
-    encode_png, render_parallel_with_progress, render_span, Camera, CameraSettings, DenseScene,
-    Framebuffer, IAabb, OctreeScene, RayStats, Rect, RenderOptions, Scene, VoxelGenerator,
-};
+use voxtrace::{encode_png, Camera, CameraSettings, Rect, RenderOptions};
+use voxtrace_cli::{on_threads, BuiltScene};
 
-use args::{Args, Backend};
+use args::Args;
 use progress::Progress;
 
 fn main() -> ExitCode {
@@ -95,8 +92,8 @@ fn run(args: &Args) -> Result<(), String> {
     result
 }
 
-/// Builds the scene and renders it: on the calling thread with `--threads 1`,
-/// otherwise on a rayon pool of that many threads (all cores by default).
+/// Builds the scene and renders it with the thread count of `--threads`,
+/// then writes the PNG and, with `--stats`, the figures.
 fn render_to(
     args: &Args,
     seed: u64,
@@ -104,130 +101,39 @@ fn render_to(
     region: Rect,
     file: File,
 ) -> Result<(), String> {
-    let work = || build_and_render(args, seed, camera, region, file);
-    match args.threads {
-        Some(1) => work(),
-        threads => {
-            let count = threads.map_or(0, usize::from); // 0: rayon picks all cores
-            ThreadPoolBuilder::new()
-                .num_threads(count)
-                .build()
-                .map_err(|e| format!("cannot start {count} worker threads: {e}"))?
-                .install(work)
-        }
-    }
-}
-
-fn build_and_render(
-    args: &Args,
-    seed: u64,
-    camera: &Camera,
-    region: Rect,
-    file: File,
-) -> Result<(), String> {
-    let terrain = VoxelGenerator::new(seed);
-    let bounds = IAabb::centered(args.size);
     let threaded = args.threads != Some(1);
-    let started = Instant::now();
-    let describe = |e: voxtrace::Error| {
-        let backend = format!("{:?}", args.backend).to_lowercase();
-        format!(
-            "cannot build the {backend} scene of size {}: {e}",
-            args.size
-        )
-    };
-    match args.backend {
-        Backend::Dense => {
-            let built = if threaded {
-                DenseScene::build_parallel(&terrain, bounds)
-            } else {
-                DenseScene::build(&terrain, bounds)
-            };
-            let scene = built.map_err(|e| match e {
-                voxtrace::Error::OutOfMemory { .. } | voxtrace::Error::SizeOverflow => {
-                    // Exact even when it overflows usize: one byte per voxel.
-                    let bytes = (2 * u128::from(args.size.unsigned_abs())).pow(3);
-                    format!(
-                        "the dense array for --size {} needs {bytes} bytes (one per voxel), \
-                         more than can be allocated; try --backend octree",
-                        args.size
-                    )
-                }
-                e => describe(e),
-            })?;
-            finish(args, &scene, camera, region, started, file)
-        }
-        Backend::Octree => {
-            let built = if threaded {
-                OctreeScene::build_parallel(&terrain, bounds)
-            } else {
-                OctreeScene::build(&terrain, bounds)
-            };
-            let scene = built.map_err(describe)?;
-            finish(args, &scene, camera, region, started, file)
-        }
-    }
-}
-
-fn finish<S: Scene + Sync>(
-    args: &Args,
-    scene: &S,
-    camera: &Camera,
-    region: Rect,
-    build_started: Instant,
-    file: File,
-) -> Result<(), String> {
-    let build = build_started.elapsed();
-    let options = RenderOptions { flat: args.flat };
-    let no_memory = || {
-        format!(
-            "out of memory: cannot allocate a {}x{} image",
-            region.width, region.height
-        )
-    };
-
-    let progress = Progress::rows(region.height);
-    let render_started = Instant::now();
-    let (pixels, rays) = if args.threads == Some(1) {
-        // The scalar path, row by row for the progress bar.
-        let area = region.area().map_err(|e| e.to_string())?;
-        let mut pixels = Vec::new();
-        pixels.try_reserve_exact(area).map_err(|_| no_memory())?;
-        pixels.resize(area, 0);
-        let mut rays = RayStats::default();
-        let rows = pixels.chunks_exact_mut(region.width as usize);
-        for (y, row) in (region.y..).zip(rows) {
-            rays += render_span(scene, camera, &options, region.x, y, row);
-            progress.advance(1);
-        }
-        (pixels, rays)
-    } else {
-        let frame = Framebuffer::new(region.width, region.height).map_err(|_| no_memory())?;
-        let rays =
-            render_parallel_with_progress(scene, camera, &options, region, &frame, &|rows| {
-                progress.advance(rows);
-            })
-            .map_err(|e| e.to_string())?;
-        (frame.into_pixels(), rays)
-    };
-    let render = render_started.elapsed();
-    progress.finish();
+    let (built, build, rendered) = on_threads(args.threads, || {
+        let (built, build) = BuiltScene::build(args.backend, args.size, seed, threaded)?;
+        let options = RenderOptions { flat: args.flat };
+        let progress = Progress::rows(region.height);
+        let rendered = built.render(camera, region, &options, threaded, &|rows| {
+            progress.advance(rows);
+        });
+        progress.finish();
+        Ok((built, build, rendered?))
+    })?;
 
     let encode_started = Instant::now();
-    encode_png(BufWriter::new(file), region.width, region.height, &pixels)
-        .map_err(|e| format!("cannot write --out {}: {e}", args.out.display()))?;
+    encode_png(
+        BufWriter::new(file),
+        region.width,
+        region.height,
+        &rendered.pixels,
+    )
+    .map_err(|e| format!("cannot write --out {}: {e}", args.out.display()))?;
     let encode = encode_started.elapsed();
 
     if args.stats {
         let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
-        let mrays = rays.primary_rays as f64 / render.as_secs_f64().max(1e-9) / 1e6;
+        let rays = rendered.rays;
+        let mrays = rays.primary_rays as f64 / rendered.elapsed.as_secs_f64().max(1e-9) / 1e6;
         eprintln!("build_ms: {:.3}", ms(build));
-        eprintln!("render_ms: {:.3}", ms(render));
+        eprintln!("render_ms: {:.3}", ms(rendered.elapsed));
         eprintln!("encode_ms: {:.3}", ms(encode));
         eprintln!("primary_rays: {}", rays.primary_rays);
         eprintln!("shadow_rays: 0");
         eprintln!("ao_rays: 0");
-        eprintln!("storage_bytes: {}", scene.storage_bytes());
+        eprintln!("storage_bytes: {}", built.scene().storage_bytes());
         eprintln!("mrays_per_s: {mrays:.3}");
     }
     Ok(())

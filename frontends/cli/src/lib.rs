@@ -1,0 +1,9 @@
+//! The CLI's build-and-render path as a library, so that every program that
+//! reports figures for voxtrace (the `voxtrace-report` frontend) times exactly
+//! the code the `voxtrace` binary runs.
+//!
+//! Errors are one-line messages meant for a user's terminal.
+
+mod pipeline;
+
+pub use pipeline::{on_threads, Backend, BuiltScene, Rendered};

@@ -1,0 +1,204 @@
+//! Build a storage from the seeded terrain, render a region of a frame.
+//!
+//! One thread count decides both steps: `Some(1)` runs the sequential build
+//! and the scalar `render_span` loop on the calling thread; anything else runs
+//! the parallel build and `render_parallel` on a rayon pool (see
+//! [`on_threads`]). Both give the same bytes.
+
+use std::time::{Duration, Instant};
+
+use clap::ValueEnum;
+use voxtrace::rayon::ThreadPoolBuilder;
+use voxtrace::{
+    render_parallel_with_progress, render_span, Camera, DenseScene, Error, Framebuffer, IAabb,
+    Node, OctreeScene, RayStats, Rect, RenderOptions, Scene, VoxelGenerator,
+};
+
+/// Which storage holds the voxels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, ValueEnum)]
+pub enum Backend {
+    /// Flat array, one byte per voxel, Amanatides & Woo traversal.
+    Dense,
+    /// Sparse pointer-free octree (alias: sparse).
+    #[value(alias = "sparse")]
+    Octree,
+}
+
+impl Backend {
+    /// The name users type: `dense` or `octree`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Backend::Dense => "dense",
+            Backend::Octree => "octree",
+        }
+    }
+}
+
+/// Runs `work` with `threads` workers: on the calling thread for `Some(1)`,
+/// otherwise inside a new rayon pool of that many threads (`None`: one per
+/// core), so that the parallel build and render inside use exactly those.
+pub fn on_threads<R: Send>(
+    threads: Option<u16>,
+    work: impl FnOnce() -> Result<R, String> + Send,
+) -> Result<R, String> {
+    match threads {
+        Some(1) => work(),
+        threads => {
+            let count = threads.map_or(0, usize::from); // 0: rayon picks all cores
+            ThreadPoolBuilder::new()
+                .num_threads(count)
+                .build()
+                .map_err(|e| format!("cannot start {count} worker threads: {e}"))?
+                .install(work)
+        }
+    }
+}
+
+/// A storage built from the terrain, either kind.
+pub enum BuiltScene {
+    /// The flat array.
+    Dense(DenseScene<Vec<u8>>),
+    /// The sparse octree.
+    Octree(OctreeScene<Vec<Node>, Vec<u8>>),
+}
+
+/// A rendered region: its pixels (row-major, `pack`ed RGBA8) and what it
+/// cost.
+pub struct Rendered {
+    /// `region.width * region.height` pixels.
+    pub pixels: Vec<u32>,
+    /// Rays traced, by kind.
+    pub rays: RayStats,
+    /// Wall time of the render alone (no allocation of the scene, no
+    /// encoding).
+    pub elapsed: Duration,
+}
+
+impl BuiltScene {
+    /// Builds `backend` over the volume `[-size, size)^3` of the terrain of
+    /// `seed`, in parallel unless `threaded` is false; returns the scene and
+    /// the build's wall time.
+    ///
+    /// # Errors
+    /// A one-line message; for a dense array that cannot be allocated it
+    /// names the bytes it needs.
+    pub fn build(
+        backend: Backend,
+        size: i32,
+        seed: u64,
+        threaded: bool,
+    ) -> Result<(BuiltScene, Duration), String> {
+        let terrain = VoxelGenerator::new(seed);
+        let bounds = IAabb::centered(size);
+        let started = Instant::now();
+        let describe = |e: Error| {
+            format!(
+                "cannot build the {} scene of size {size}: {e}",
+                backend.name()
+            )
+        };
+        let scene = match backend {
+            Backend::Dense => {
+                let built = if threaded {
+                    DenseScene::build_parallel(&terrain, bounds)
+                } else {
+                    DenseScene::build(&terrain, bounds)
+                };
+                BuiltScene::Dense(built.map_err(|e| match e {
+                    Error::OutOfMemory { .. } | Error::SizeOverflow => {
+                        // Exact even when it overflows usize: one byte per voxel.
+                        let bytes = (2 * u128::from(size.unsigned_abs())).pow(3);
+                        format!(
+                            "the dense array for --size {size} needs {bytes} bytes (one per \
+                             voxel), more than can be allocated; try --backend octree"
+                        )
+                    }
+                    e => describe(e),
+                })?)
+            }
+            Backend::Octree => {
+                let built = if threaded {
+                    OctreeScene::build_parallel(&terrain, bounds)
+                } else {
+                    OctreeScene::build(&terrain, bounds)
+                };
+                BuiltScene::Octree(built.map_err(describe)?)
+            }
+        };
+        Ok((scene, started.elapsed()))
+    }
+
+    /// The storage as the tracer sees it.
+    #[must_use]
+    pub fn scene(&self) -> &(dyn Scene + Sync) {
+        match self {
+            BuiltScene::Dense(scene) => scene,
+            BuiltScene::Octree(scene) => scene,
+        }
+    }
+
+    /// Renders `region` of `camera`'s frame: with the scalar path on the
+    /// calling thread unless `threaded`, else with `render_parallel` on the
+    /// current rayon pool. `progress` hears of every finished row count.
+    ///
+    /// # Errors
+    /// A one-line message if the region does not fit the frame or its pixels
+    /// cannot be allocated.
+    pub fn render(
+        &self,
+        camera: &Camera,
+        region: Rect,
+        options: &RenderOptions,
+        threaded: bool,
+        progress: &(dyn Fn(u32) + Sync),
+    ) -> Result<Rendered, String> {
+        // Monomorphized per storage: the hot loop never calls through `dyn`.
+        match self {
+            BuiltScene::Dense(scene) => render(scene, camera, region, options, threaded, progress),
+            BuiltScene::Octree(scene) => render(scene, camera, region, options, threaded, progress),
+        }
+    }
+}
+
+fn render<S: Scene + Sync>(
+    scene: &S,
+    camera: &Camera,
+    region: Rect,
+    options: &RenderOptions,
+    threaded: bool,
+    progress: &(dyn Fn(u32) + Sync),
+) -> Result<Rendered, String> {
+    let no_memory = || {
+        format!(
+            "out of memory: cannot allocate a {}x{} image",
+            region.width, region.height
+        )
+    };
+    region.validate(camera).map_err(|e| e.to_string())?;
+    let started = Instant::now();
+    let (pixels, rays) = if threaded {
+        let frame = Framebuffer::new(region.width, region.height).map_err(|_| no_memory())?;
+        let rays = render_parallel_with_progress(scene, camera, options, region, &frame, progress)
+            .map_err(|e| e.to_string())?;
+        (frame.into_pixels(), rays)
+    } else {
+        // The scalar path, row by row for the progress callback.
+        let area = region.area().map_err(|e| e.to_string())?;
+        let mut pixels = Vec::new();
+        pixels.try_reserve_exact(area).map_err(|_| no_memory())?;
+        pixels.resize(area, 0);
+        let mut rays = RayStats::default();
+        let rows = pixels.chunks_exact_mut(region.width as usize);
+        for (y, row) in (region.y..).zip(rows) {
+            rays += render_span(scene, camera, options, region.x, y, row);
+            progress(1);
+        }
+        (pixels, rays)
+    };
+    Ok(Rendered {
+        pixels,
+        rays,
+        elapsed: started.elapsed(),
+    })
+}
