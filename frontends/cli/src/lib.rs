@@ -6,4 +6,4 @@
 
 mod pipeline;
 
-pub use pipeline::{on_threads, Backend, BuiltScene, Rendered};
+pub use pipeline::{above_position, on_threads, paper_position, Backend, BuiltScene, Rendered};

@@ -13,9 +13,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::Parser;
-use voxtrace::glam::Vec3;
 use voxtrace::{encode_png, Camera, CameraSettings, Rect, RenderOptions};
-use voxtrace_cli::{on_threads, BuiltScene};
+use voxtrace_cli::{on_threads, paper_position, BuiltScene};
 
 use args::Args;
 use progress::Progress;
@@ -58,13 +57,12 @@ fn random_seed() -> u64 {
 }
 
 fn run(args: &Args) -> Result<(), String> {
-    let n = args.size;
     let seed = args.seed.unwrap_or_else(|| {
         let seed = random_seed();
         eprintln!("seed: {seed}");
         seed
     });
-    let position = args.position.unwrap_or(Vec3::splat((n - 10) as f32));
+    let position = args.position.unwrap_or(paper_position(args.size));
     let camera = Camera::new(CameraSettings {
         width: args.width,
         height: args.height,

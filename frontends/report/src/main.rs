@@ -1,0 +1,42 @@
+//! `voxtrace-report`: measures voxtrace with the CLI's own code path and
+//! writes the tables (markdown) and plots (PNG) the README shows.
+//!
+//! `cargo run --release -p voxtrace-report -- speed [--quick]`
+
+mod measure;
+mod plot;
+mod speed;
+mod surface;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// Measure voxtrace and write the README's tables and plots.
+#[derive(Debug, Parser)]
+#[command(name = "voxtrace-report", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    report: Report,
+}
+
+#[derive(Debug, Subcommand)]
+enum Report {
+    /// Render and build times per backend and scene size, beside the seed
+    /// paper's table; storage bytes; octree scaling to size 2048.
+    Speed(speed::SpeedArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match &cli.report {
+        Report::Speed(args) => speed::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,195 @@
+//! Log-log line charts drawn side by side into one PNG.
+//!
+//! plotters draws into an RGB buffer; the PNG is written by voxtrace's own
+//! encoder, so the report needs no second image stack. Text needs a TrueType
+//! font, read at run time (the repository ships none).
+
+use std::path::{Path, PathBuf};
+
+use plotters::prelude::*;
+use plotters::style::FontStyle;
+
+/// One line of a chart.
+pub struct Series {
+    /// Legend text.
+    pub name: String,
+    /// `(x, y)` points, both positive (the axes are logarithmic).
+    pub points: Vec<(f64, f64)>,
+    /// Index into [`COLORS`]: series of one kind share a color.
+    pub color: usize,
+    /// How the line is drawn.
+    pub line: Line,
+}
+
+/// Line styles, to tell apart series of one color.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Line {
+    /// Solid, thick.
+    Thick,
+    /// Solid, thin.
+    Thin,
+    /// Dashed: reference figures from elsewhere.
+    Dashed,
+}
+
+/// The colors of the series, chosen to stay apart for color-blind readers
+/// (Okabe and Ito's palette).
+pub const COLORS: [RGBColor; 4] = [
+    RGBColor(213, 94, 0),
+    RGBColor(0, 114, 178),
+    RGBColor(0, 158, 115),
+    RGBColor(204, 121, 167),
+];
+
+/// One panel: a title, axis labels and its series.
+pub struct Chart {
+    /// Caption above the panel.
+    pub title: String,
+    /// Label of the horizontal axis.
+    pub x_label: String,
+    /// Label of the vertical axis.
+    pub y_label: String,
+    /// The lines, colored in order.
+    pub series: Vec<Series>,
+}
+
+/// Places where common systems keep a sans-serif TrueType font.
+const FONT_CANDIDATES: [&str; 5] = [
+    "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+    "/usr/share/fonts/TTF/DejaVuSans.ttf",
+    "/usr/share/fonts/dejavu/DejaVuSans.ttf",
+    "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
+    "/Library/Fonts/Arial.ttf",
+];
+
+/// Loads `explicit`, or the first font of [`FONT_CANDIDATES`] that exists,
+/// and registers it as plotters' sans-serif. Call once per process.
+pub fn load_font(explicit: Option<&Path>) -> Result<(), String> {
+    let path: PathBuf = match explicit {
+        Some(path) => path.to_path_buf(),
+        None => FONT_CANDIDATES
+            .iter()
+            .map(PathBuf::from)
+            .find(|p| p.is_file())
+            .ok_or("no TrueType font found for the plot's text; pass --font PATH.ttf")?,
+    };
+    let bytes =
+        std::fs::read(&path).map_err(|e| format!("cannot read --font {}: {e}", path.display()))?;
+    // plotters keeps fonts for the whole process.
+    let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
+    plotters::style::register_font("sans-serif", FontStyle::Normal, bytes)
+        .map_err(|_| format!("{} is not a TrueType/OpenType font", path.display()))
+}
+
+/// Panel size in pixels.
+const PANEL: (u32, u32) = (800, 560);
+
+/// Draws `charts` left to right into the PNG at `path`.
+pub fn draw(path: &Path, charts: &[Chart]) -> Result<(), String> {
+    let width = PANEL.0 * charts.len() as u32;
+    let height = PANEL.1;
+    let mut rgb = vec![0u8; width as usize * height as usize * 3];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (width, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(plot_error)?;
+        let panels = root.split_evenly((1, charts.len()));
+        for (chart, area) in charts.iter().zip(&panels) {
+            draw_chart(area, chart)?;
+        }
+        root.present().map_err(plot_error)?;
+    }
+    let pixels: Vec<u32> = rgb
+        .chunks_exact(3)
+        .map(|c| voxtrace::pack(voxtrace::glam::U8Vec3::new(c[0], c[1], c[2])))
+        .collect();
+    voxtrace::write_png(path, width, height, &pixels)
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))
+}
+
+fn plot_error<E: std::fmt::Display>(e: E) -> String {
+    format!("cannot draw the plot: {e}")
+}
+
+/// The range covering `values` padded by a fifth of a decade each side.
+fn log_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
+    let (lo, hi) = values
+        .filter(|v| *v > 0.0 && v.is_finite())
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if lo > hi {
+        return 1.0..10.0;
+    }
+    let pad = 10f64.powf(0.2);
+    lo / pad..hi * pad
+}
+
+fn draw_chart(
+    area: &DrawingArea<BitMapBackend, plotters::coord::Shift>,
+    chart: &Chart,
+) -> Result<(), String> {
+    let points = || chart.series.iter().flat_map(|s| s.points.iter());
+    let xs = log_range(points().map(|p| p.0));
+    let ys = log_range(points().map(|p| p.1));
+    let mut context = ChartBuilder::on(area)
+        .caption(&chart.title, ("sans-serif", 22))
+        .margin(12)
+        .x_label_area_size(44)
+        .y_label_area_size(72)
+        .build_cartesian_2d(xs.log_scale(), ys.log_scale())
+        .map_err(plot_error)?;
+    context
+        .configure_mesh()
+        .x_desc(&chart.x_label)
+        .y_desc(&chart.y_label)
+        .label_style(("sans-serif", 15))
+        .axis_desc_style(("sans-serif", 17))
+        .x_label_formatter(&|v| short_number(*v))
+        .y_label_formatter(&|v| short_number(*v))
+        .draw()
+        .map_err(plot_error)?;
+    for series in &chart.series {
+        let color = COLORS[series.color % COLORS.len()];
+        let style = color.stroke_width(if series.line == Line::Thin { 1 } else { 3 });
+        let drawn = if series.line == Line::Dashed {
+            context.draw_series(DashedLineSeries::new(
+                series.points.iter().copied(),
+                8,
+                6,
+                style,
+            ))
+        } else {
+            context.draw_series(LineSeries::new(series.points.iter().copied(), style))
+        };
+        drawn
+            .map_err(plot_error)?
+            .label(&series.name)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+        context
+            .draw_series(
+                series
+                    .points
+                    .iter()
+                    .map(|&p| Circle::new(p, 4, color.filled())),
+            )
+            .map_err(plot_error)?;
+    }
+    context
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .label_font(("sans-serif", 15))
+        .draw()
+        .map_err(plot_error)
+}
+
+/// Axis labels without trailing zeros: 0.5, 20, 1000.
+fn short_number(v: f64) -> String {
+    if v >= 100.0 {
+        format!("{v:.0}")
+    } else {
+        let text = format!("{v:.3}");
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    }
+}
