@@ -21,6 +21,16 @@ fn quick() -> bool {
     std::env::var_os("VOXTRACE_BENCH_QUICK").is_some_and(|v| v != "0")
 }
 
+/// Ten samples per benchmark, over 2 s (quick) or criterion's 5 s: a slow
+/// frame still takes its ten samples, so the whole grid fits in half an hour.
+fn configure<M: criterion::measurement::Measurement>(group: &mut criterion::BenchmarkGroup<M>) {
+    let seconds = if quick() { 2 } else { 5 };
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(seconds));
+}
+
 const SIZES: [i32; 3] = [50, 100, 250];
 const SEED: u64 = 1;
 
@@ -60,9 +70,7 @@ fn render(c: &mut Criterion) {
         let octree = OctreeScene::build_parallel(&terrain, bounds).expect("octree fits");
         let scenes: [(&str, &(dyn Scene + Sync)); 2] = [("dense", &dense), ("octree", &octree)];
         let mut group = c.benchmark_group(format!("render/size{size}"));
-        group
-            .sample_size(10)
-            .warm_up_time(Duration::from_millis(500));
+        configure(&mut group);
         for &(width, height) in resolutions {
             let frame = Framebuffer::new(width, height).expect("frame fits");
             for above in [false, true] {
@@ -86,9 +94,7 @@ fn render(c: &mut Criterion) {
 fn build(c: &mut Criterion) {
     let terrain = VoxelGenerator::new(SEED);
     let mut group = c.benchmark_group("build");
-    group
-        .sample_size(10)
-        .warm_up_time(Duration::from_millis(500));
+    configure(&mut group);
     for size in SIZES {
         let bounds = IAabb::centered(size);
         group.bench_function(BenchmarkId::new("dense", size), |b| {
@@ -105,9 +111,7 @@ fn scaling(c: &mut Criterion) {
     let sizes: &[i32] = if quick() { &[500] } else { &[500, 1024, 2048] };
     let terrain = VoxelGenerator::new(SEED);
     let mut group = c.benchmark_group("scaling/octree");
-    group
-        .sample_size(10)
-        .warm_up_time(Duration::from_millis(500));
+    configure(&mut group);
     let frame = Framebuffer::new(1920, 1080).expect("frame fits");
     for &size in sizes {
         let bounds = IAabb::centered(size);

@@ -61,6 +61,7 @@ pub struct Camera {
     delta_u: Vec3,
     delta_v: Vec3,
     forward: Ray,
+    spread: f32,
 }
 
 fn invalid(reason: &'static str) -> Error {
@@ -120,6 +121,8 @@ impl Camera {
             delta_u,
             delta_v,
             forward,
+            // The angle one pixel row spans at the view's center.
+            spread: delta_v.length() / s.focus_dist,
         };
         // The ray direction is affine in (i, j): if the four corners are
         // valid, so is every pixel between them.
@@ -147,6 +150,13 @@ impl Camera {
     #[must_use]
     pub fn position(&self) -> Vec3 {
         self.center
+    }
+
+    /// The angle (radians, small-angle) a pixel spans: at distance `t` a
+    /// pixel covers about `t * pixel_spread()` of the scene.
+    #[must_use]
+    pub fn pixel_spread(&self) -> f32 {
+        self.spread
     }
 
     /// The point on the image plane at continuous pixel coordinates

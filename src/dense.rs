@@ -118,12 +118,11 @@ impl<B: AsRef<[u8]>> DenseScene<B> {
     }
 }
 
-impl<B: AsRef<[u8]>> Scene for DenseScene<B> {
-    fn bounds(&self) -> IAabb {
-        self.bounds
-    }
-
-    fn trace_counted(&self, ray: &Ray) -> Traced {
+impl<B: AsRef<[u8]>> DenseScene<B> {
+    /// The cell walk, showing `visit` each empty cell it leaves; monomorphized
+    /// so that tracing without a visitor pays nothing for it.
+    #[inline]
+    fn walk<V: FnMut(IAabb) -> bool>(&self, ray: &Ray, mut visit: V) -> Traced {
         let Some(mut walk) = Walk::start(ray, &self.bounds) else {
             return Traced {
                 hit: None,
@@ -148,13 +147,31 @@ impl<B: AsRef<[u8]>> Scene for DenseScene<B> {
                     steps: walk.steps(),
                 };
             }
-            if !walk.step() {
+            let cell = IAabb {
+                min: pos,
+                max: pos + 1,
+            };
+            if !visit(cell) || !walk.step() {
                 return Traced {
                     hit: None,
                     steps: walk.steps(),
                 };
             }
         }
+    }
+}
+
+impl<B: AsRef<[u8]>> Scene for DenseScene<B> {
+    fn bounds(&self) -> IAabb {
+        self.bounds
+    }
+
+    fn trace_counted(&self, ray: &Ray) -> Traced {
+        self.walk(ray, |_| true)
+    }
+
+    fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced {
+        self.walk(ray, visit)
     }
 
     fn storage_bytes(&self) -> usize {

@@ -36,6 +36,11 @@ pub enum Error {
         /// Which parameter is wrong and why.
         reason: &'static str,
     },
+    /// A render setting is out of range; the reason names it.
+    InvalidOptions {
+        /// Which setting is wrong and why.
+        reason: &'static str,
+    },
     /// A ray with a non-finite origin, or a zero or non-finite direction.
     InvalidRay,
     /// A framebuffer whose size is not the size of the region rendered into it.
@@ -65,6 +70,7 @@ impl fmt::Display for Error {
                 write!(f, "out of memory: could not allocate {bytes} bytes")
             }
             Error::InvalidCamera { reason } => write!(f, "invalid camera: {reason}"),
+            Error::InvalidOptions { reason } => write!(f, "invalid render options: {reason}"),
             Error::InvalidRay => {
                 f.write_str("invalid ray: origin must be finite, direction finite and non-zero")
             }

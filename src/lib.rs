@@ -49,6 +49,7 @@ extern crate std;
 #[cfg(feature = "rayon")]
 mod build_par;
 mod camera;
+mod debug_view;
 mod dense;
 mod error;
 #[cfg(feature = "std")]
@@ -59,13 +60,16 @@ mod noise;
 mod octree;
 mod octree_build;
 mod octree_trace;
+mod options;
 #[cfg(feature = "rayon")]
 mod par_pixels;
 mod render;
 #[cfg(feature = "rayon")]
 mod render_par;
+mod sampling;
 mod scene;
 mod shade;
+mod shader;
 #[cfg(feature = "alloc")]
 mod storage;
 mod terrain;
@@ -81,9 +85,10 @@ pub use error::Error;
 pub use geom::{Face, Hit, IAabb, Ray, MAX_COORD};
 pub use noise::{Perlin, SplitMix64};
 pub use octree::{Node, OctreeLen, OctreeScene};
+pub use options::{Fog, Occlusion, RenderOptions, DEFAULT_SUN};
 pub use render::{render, render_pixel, render_region, render_span, RayStats, Rect};
 pub use scene::{Scene, Traced};
-pub use shade::{pack, shade, sky, unpack, RenderOptions, FLAT_SKY};
+pub use shade::{pack, shade, sky, unpack, FLAT_SKY, SKY_HORIZON, SKY_ZENITH};
 pub use terrain::{VoxelGenerator, GRASS, HEIGHT, MOUNTAIN, ROUGHNESS, SCALE, SNOW, WATER};
 pub use voxel::{FnSource, Palette, Region, Voxel, VoxelSource};
 pub use walk::max_steps;

@@ -35,6 +35,26 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
     }
 
     fn trace_counted(&self, ray: &Ray) -> Traced {
+        self.walk(ray, |_| true)
+    }
+
+    fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced {
+        self.walk(ray, visit)
+    }
+
+    fn storage_bytes(&self) -> usize {
+        core::mem::size_of_val(self.nodes.as_ref())
+            + self.materials.as_ref().len()
+            + core::mem::size_of::<crate::voxel::Palette>()
+            + core::mem::size_of::<Node>()
+    }
+}
+
+impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
+    /// The box-at-a-time walk, showing `visit` each empty cube it leaves;
+    /// monomorphized so that tracing without a visitor pays nothing for it.
+    #[inline]
+    fn walk<V: FnMut(IAabb) -> bool>(&self, ray: &Ray, mut visit: V) -> Traced {
         let Some(walk) = Walk::start(ray, &self.bounds) else {
             return Traced {
                 hit: None,
@@ -106,6 +126,13 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
             let side = 1 << empty_log;
             let exit = walk.exit_of(min + cube, min + cube + side);
             steps += 1;
+            let empty = IAabb {
+                min: min + cube,
+                max: min + cube + side,
+            };
+            if !visit(empty) {
+                return Traced { hit: None, steps };
+            }
             if exit.t == f32::INFINITY {
                 // No plane of the cube is ever reached in f32.
                 return Traced { hit: None, steps };
@@ -134,15 +161,6 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
         }
     }
 
-    fn storage_bytes(&self) -> usize {
-        core::mem::size_of_val(self.nodes.as_ref())
-            + self.materials.as_ref().len()
-            + core::mem::size_of::<crate::voxel::Palette>()
-            + core::mem::size_of::<Node>()
-    }
-}
-
-impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// The material of occupied bit `bit` of a brick.
     #[inline]
     pub(crate) fn brick_material(&self, occupancy: u64, materials: BrickMaterials, bit: u32) -> u8 {

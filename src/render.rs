@@ -5,8 +5,9 @@
 //! they cannot disagree.
 
 use crate::camera::Camera;
+use crate::options::RenderOptions;
 use crate::scene::Scene;
-use crate::shade::{pack, shade, RenderOptions};
+use crate::shader::{FrameJob, Kernel, Shader};
 use crate::Error;
 
 /// Rays traced for a frame or part of one, by kind.
@@ -16,12 +17,20 @@ pub struct RayStats {
     pub primary_rays: u64,
     /// Camera rays that hit a voxel.
     pub primary_hits: u64,
+    /// Rays toward the sun (shadows): one per primary hit on a face the sun
+    /// shines on, 0 with shadows off or no sun.
+    pub shadow_rays: u64,
+    /// Ambient occlusion rays: the setting's ray count per primary hit that
+    /// entered through a face, 0 with occlusion off.
+    pub ao_rays: u64,
 }
 
 impl core::ops::AddAssign for RayStats {
     fn add_assign(&mut self, rhs: Self) {
         self.primary_rays += rhs.primary_rays;
         self.primary_hits += rhs.primary_hits;
+        self.shadow_rays += rhs.shadow_rays;
+        self.ao_rays += rhs.ao_rays;
     }
 }
 
@@ -85,9 +94,9 @@ impl Rect {
 }
 
 /// Renders pixel `(x, y)` of `camera`'s frame: its packed color and the rays
-/// it traced. The one definition of a pixel's value; every renderer (span,
-/// crop, frame, threaded) calls it, so they cannot disagree.
-#[inline]
+/// it traced. The same value every renderer (span, crop, frame, threaded)
+/// gives that pixel. Prepares the frame's shader per call: loops should
+/// call [`render_span`] or [`render_region`] instead.
 pub fn render_pixel<S: Scene + ?Sized>(
     scene: &S,
     camera: &Camera,
@@ -95,18 +104,25 @@ pub fn render_pixel<S: Scene + ?Sized>(
     x: u32,
     y: u32,
 ) -> (u32, RayStats) {
-    let ray = camera.get_ray(x, y);
-    let hit = scene.trace(&ray);
-    let stats = RayStats {
-        primary_rays: 1,
-        primary_hits: u64::from(hit.is_some()),
-    };
-    (pack(shade(hit.as_ref(), &ray, options)), stats)
+    struct Pixel<'a, S: ?Sized> {
+        scene: &'a S,
+        x: u32,
+        y: u32,
+    }
+    impl<S: Scene + ?Sized> FrameJob for Pixel<'_, S> {
+        type Output = (u32, RayStats);
+        fn run<K: Kernel>(self, kernel: &K) -> (u32, RayStats) {
+            kernel.pixel(self.scene, self.x, self.y)
+        }
+    }
+    Shader::new(options, camera).dispatch(Pixel { scene, x, y })
 }
 
 /// Renders pixels `(x0 + i, y)` for every `i` in `0..out.len()` into `out`.
 ///
-/// The caller keeps the pixels inside the frame. Allocates nothing.
+/// The caller keeps the pixels inside the frame and the options valid
+/// ([`RenderOptions::validate`]; invalid settings are turned off). Allocates
+/// nothing.
 pub fn render_span<S: Scene + ?Sized>(
     scene: &S,
     camera: &Camera,
@@ -115,13 +131,37 @@ pub fn render_span<S: Scene + ?Sized>(
     y: u32,
     out: &mut [u32],
 ) -> RayStats {
-    let mut stats = RayStats::default();
-    for (x, pixel) in (x0..).zip(out.iter_mut()) {
-        let (rgba, rays) = render_pixel(scene, camera, options, x, y);
-        *pixel = rgba;
-        stats += rays;
+    Shader::new(options, camera).dispatch(Rows {
+        scene,
+        x0,
+        y0: y,
+        width: out.len().max(1),
+        out,
+    })
+}
+
+/// Rows of pixels `(x0.., y0..)`, `width` to a row, into `out`.
+struct Rows<'a, S: ?Sized> {
+    scene: &'a S,
+    x0: u32,
+    y0: u32,
+    width: usize,
+    out: &'a mut [u32],
+}
+
+impl<S: Scene + ?Sized> FrameJob for Rows<'_, S> {
+    type Output = RayStats;
+    fn run<K: Kernel>(self, kernel: &K) -> RayStats {
+        let mut stats = RayStats::default();
+        for (y, row) in (self.y0..).zip(self.out.chunks_mut(self.width)) {
+            for (x, pixel) in (self.x0..).zip(row.iter_mut()) {
+                let (rgba, rays) = kernel.pixel(self.scene, x, y);
+                *pixel = rgba;
+                stats += rays;
+            }
+        }
+        stats
     }
-    stats
 }
 
 /// Renders the crop `region` of the frame into `out`, row-major with stride
@@ -137,6 +177,7 @@ pub fn render_region<S: Scene + ?Sized>(
     out: &mut [u32],
 ) -> Result<RayStats, Error> {
     region.validate(camera)?;
+    options.validate()?;
     let required = region.area()?;
     if out.len() < required {
         return Err(Error::BufferTooSmall {
@@ -144,12 +185,13 @@ pub fn render_region<S: Scene + ?Sized>(
             actual: out.len(),
         });
     }
-    let mut stats = RayStats::default();
-    let rows = out[..required].chunks_exact_mut(region.width as usize);
-    for (y, row) in (region.y..).zip(rows) {
-        stats += render_span(scene, camera, options, region.x, y, row);
-    }
-    Ok(stats)
+    Ok(Shader::new(options, camera).dispatch(Rows {
+        scene,
+        x0: region.x,
+        y0: region.y,
+        width: region.width as usize,
+        out: &mut out[..required],
+    }))
 }
 
 /// Renders the whole frame into `out` (row-major, `width * height` RGBA8

@@ -1,14 +1,15 @@
-//! The threaded renderer (feature `rayon`): the scalar tracer's
-//! [`render_pixel`] over the framebuffer's parallel pixel iterator, one row
-//! per unit of work.
+//! The threaded renderer (feature `rayon`): the scalar tracer's pixel
+//! kernel over the framebuffer's parallel pixel iterator, one row per unit
+//! of work.
 
 use rayon::iter::{IndexedParallelIterator, ParallelIterator};
 
 use crate::camera::Camera;
 use crate::framebuffer::Framebuffer;
-use crate::render::{render_pixel, RayStats, Rect};
+use crate::options::RenderOptions;
+use crate::render::{RayStats, Rect};
 use crate::scene::Scene;
-use crate::shade::RenderOptions;
+use crate::shader::{FrameJob, Kernel, Shader};
 use crate::Error;
 
 /// Renders the crop `region` of `camera`'s frame into `frame` on the current
@@ -66,21 +67,51 @@ where
             actual,
         });
     }
-    // A chunk of `width` pixels starting at a multiple of `width` is exactly
-    // one row: rays that are neighbours on screen stay on one thread and walk
-    // the same nodes while they are in cache.
-    let stats = frame
-        .par_pixels()
-        .fold_chunks(region.width as usize, RayStats::default, |stats, p| {
-            let (x, y) = (region.x + p.x, region.y + p.y);
-            let (rgba, rays) = render_pixel(scene, camera, options, x, y);
-            p.set(rgba);
-            stats + rays
-        })
-        .map(|row| {
-            rows_done(1);
-            row
-        })
-        .reduce(RayStats::default, |a, b| a + b);
-    Ok(stats)
+    options.validate()?;
+    Ok(Shader::new(options, camera).dispatch(Frame {
+        scene,
+        region,
+        frame,
+        rows_done,
+    }))
+}
+
+/// A threaded frame: one task per row.
+struct Frame<'a, S: ?Sized, P: ?Sized> {
+    scene: &'a S,
+    region: Rect,
+    frame: &'a Framebuffer,
+    rows_done: &'a P,
+}
+
+impl<S, P> FrameJob for Frame<'_, S, P>
+where
+    S: Scene + Sync + ?Sized,
+    P: Fn(u32) + Sync + ?Sized,
+{
+    type Output = RayStats;
+
+    fn run<K: Kernel>(self, kernel: &K) -> RayStats {
+        let Frame {
+            scene,
+            region,
+            frame,
+            rows_done,
+        } = self;
+        // A chunk of `width` pixels starting at a multiple of `width` is
+        // exactly one row: rays that are neighbours on screen stay on one
+        // thread and walk the same nodes while they are in cache.
+        frame
+            .par_pixels()
+            .fold_chunks(region.width as usize, RayStats::default, |stats, p| {
+                let (rgba, rays) = kernel.pixel(scene, region.x + p.x, region.y + p.y);
+                p.set(rgba);
+                stats + rays
+            })
+            .map(|row| {
+                rows_done(1);
+                row
+            })
+            .reduce(RayStats::default, |a, b| a + b)
+    }
 }

@@ -26,6 +26,12 @@ pub trait Scene {
     /// The first solid voxel along `ray`, with the walk's move count.
     fn trace_counted(&self, ray: &Ray) -> Traced;
 
+    /// [`Scene::trace_counted`], also showing `visit` every empty box the
+    /// walk moves through, nearest first: cells for the dense array, node
+    /// cubes for the octree (the debug view draws their edges). When `visit`
+    /// returns `false` the walk stops there and reports no hit.
+    fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced;
+
     /// The first solid voxel along `ray`.
     #[inline]
     fn trace(&self, ray: &Ray) -> Option<Hit> {
@@ -43,6 +49,10 @@ impl<S: Scene + ?Sized> Scene for &S {
 
     fn trace_counted(&self, ray: &Ray) -> Traced {
         (**self).trace_counted(ray)
+    }
+
+    fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced {
+        (**self).trace_visiting(ray, visit)
     }
 
     fn storage_bytes(&self) -> usize {

@@ -113,7 +113,11 @@ fn backends_render_byte_identical_images() {
         })
         .unwrap();
         for flat in [false, true] {
-            let options = RenderOptions { flat };
+            let options = if flat {
+                RenderOptions::flat()
+            } else {
+                RenderOptions::default()
+            };
             let (mut a, mut b) = (vec![0u32; 96 * 54], vec![0u32; 96 * 54]);
             let sa = render(&dense, &camera, &options, &mut a).unwrap();
             let sb = render(&octree, &camera, &options, &mut b).unwrap();

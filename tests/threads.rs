@@ -10,8 +10,9 @@ use voxtrace::glam::{IVec3, Vec3};
 use voxtrace::rayon::prelude::*;
 use voxtrace::rayon::{ThreadPool, ThreadPoolBuilder};
 use voxtrace::{
-    render, render_parallel, render_region, Camera, CameraSettings, DenseScene, Error, Framebuffer,
-    IAabb, OctreeScene, RayStats, Rect, RenderOptions, Scene, VoxelGenerator,
+    render, render_parallel, render_region, Camera, CameraSettings, DenseScene, Error, Fog,
+    Framebuffer, IAabb, Occlusion, OctreeScene, RayStats, Rect, RenderOptions, Scene,
+    VoxelGenerator,
 };
 
 fn pool(threads: usize) -> ThreadPool {
@@ -66,20 +67,47 @@ fn threaded_renders_equal_the_scalar_render_for_1_2_3_and_8_threads() {
     ];
     let mut hits = 0;
     for camera in &cameras {
-        for flat in [false, true] {
-            let options = RenderOptions { flat };
-            let (expected, expected_stats) = scalar(&dense, camera, &options);
-            assert_eq!(scalar(&octree, camera, &options).0, expected);
-            hits += expected_stats.primary_hits;
-            for pool in &pools {
-                let full = Rect::full(camera);
-                let threads = pool.current_num_threads();
-                let (pixels, stats) = parallel(pool, &dense, camera, &options, full);
-                assert!(pixels == expected, "dense, {threads} threads, flat {flat}");
-                assert_eq!(stats, expected_stats);
-                let (pixels, stats) = parallel(pool, &octree, camera, &options, full);
-                assert!(pixels == expected, "octree, {threads} threads, flat {flat}");
-                assert_eq!(stats, expected_stats);
+        let every_effect = RenderOptions {
+            shadows: true,
+            occlusion: Some(Occlusion {
+                rays: 3,
+                distance: 6.0,
+            }),
+            samples: 2,
+            fog: Some(Fog { distance: 90.0 }),
+            ..RenderOptions::default()
+        };
+        let debug = RenderOptions {
+            debug: true,
+            ..RenderOptions::default()
+        };
+        for options in [
+            RenderOptions::default(),
+            RenderOptions::flat(),
+            every_effect,
+            debug,
+        ] {
+            let (dense_pixels, dense_stats) = scalar(&dense, camera, &options);
+            let (octree_pixels, octree_stats) = scalar(&octree, camera, &options);
+            // Every look but the debug view (which draws each storage's own
+            // boxes) is the same for both storages.
+            if !options.debug {
+                assert_eq!(octree_pixels, dense_pixels, "{options:?}");
+                assert_eq!(octree_stats, dense_stats, "{options:?}");
+            }
+            hits += dense_stats.primary_hits;
+            let scenes: [(&(dyn Scene + Sync), &Vec<u32>, RayStats); 2] = [
+                (&dense, &dense_pixels, dense_stats),
+                (&octree, &octree_pixels, octree_stats),
+            ];
+            for (scene, expected, expected_stats) in scenes {
+                for pool in &pools {
+                    let full = Rect::full(camera);
+                    let threads = pool.current_num_threads();
+                    let (pixels, stats) = parallel(pool, &scene, camera, &options, full);
+                    assert!(pixels == *expected, "{threads} threads, {options:?}");
+                    assert_eq!(stats, expected_stats);
+                }
             }
         }
     }

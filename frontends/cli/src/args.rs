@@ -55,6 +55,37 @@ pub struct Args {
     #[arg(long)]
     pub flat: bool,
 
+    /// The seed paper's debug view: the edges of the boxes the storage walks
+    /// through (octree nodes; cells for dense), colored by a Pearson hash of
+    /// their position, voxels black.
+    #[arg(long)]
+    pub debug: bool,
+
+    /// Direction toward the sun X,Y,Z, or `none` for a scene without light
+    /// [default: 0.45,1,-0.3].
+    #[arg(long, value_parser = parse_sun, allow_hyphen_values = true)]
+    pub sun: Option<Sun>,
+
+    /// Hard shadows: one ray toward the sun per hit on a sunlit face.
+    #[arg(long)]
+    pub shadows: bool,
+
+    /// Ambient occlusion with N rays per hit.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=4096))]
+    pub ao: Option<u16>,
+
+    /// How far ambient occlusion looks for occluders, in voxels.
+    #[arg(long, value_name = "VOXELS", default_value_t = voxtrace::Occlusion::DEFAULT_DISTANCE, value_parser = parse_distance)]
+    pub ao_distance: f32,
+
+    /// Samples per pixel (anti-aliasing).
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=4096))]
+    pub spp: u16,
+
+    /// Distance fog, all fog at 3 x --size voxels from the camera.
+    #[arg(long)]
+    pub fog: bool,
+
     /// Worker threads for the build and the render; 1 runs the scalar
     /// single-threaded path [default: all cores].
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
@@ -91,6 +122,28 @@ fn parse_vec3(s: &str) -> Result<Vec3, String> {
         Ok(v)
     } else {
         Err(format!("'{s}' must be finite"))
+    }
+}
+
+/// The `--sun` setting: a direction, or no light at all.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sun(pub Option<Vec3>);
+
+fn parse_sun(s: &str) -> Result<Sun, String> {
+    if s.trim().eq_ignore_ascii_case("none") {
+        return Ok(Sun(None));
+    }
+    let v = parse_vec3(s)?;
+    if v == Vec3::ZERO {
+        return Err(format!("'{s}' is not a direction (all zero)"));
+    }
+    Ok(Sun(Some(v)))
+}
+
+fn parse_distance(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(d) if d > 0.0 && d.is_finite() => Ok(d),
+        _ => Err(format!("'{s}' is not a positive finite distance")),
     }
 }
 

@@ -13,7 +13,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::Parser;
-use voxtrace::{encode_png, Camera, CameraSettings, Rect, RenderOptions};
+use voxtrace::{encode_png, Camera, CameraSettings, Fog, Occlusion, Rect, RenderOptions};
 use voxtrace_cli::{on_threads, paper_position, BuiltScene};
 
 use args::Args;
@@ -80,6 +80,8 @@ fn run(args: &Args) -> Result<(), String> {
         )
     })?;
 
+    explain_ignored(&render_options(args));
+
     // Open the output first: a bad path fails now, not after the render.
     let file = File::create(&args.out)
         .map_err(|e| format!("cannot write --out {}: {e}", args.out.display()))?;
@@ -88,6 +90,58 @@ fn run(args: &Args) -> Result<(), String> {
         let _ = std::fs::remove_file(&args.out);
     }
     result
+}
+
+/// The effects the flags ask for.
+fn render_options(args: &Args) -> RenderOptions {
+    RenderOptions {
+        flat: args.flat,
+        debug: args.debug,
+        sun: args.sun.map_or(Some(voxtrace::DEFAULT_SUN), |sun| sun.0),
+        shadows: args.shadows,
+        occlusion: args.ao.map(|rays| Occlusion {
+            rays,
+            distance: args.ao_distance,
+        }),
+        samples: args.spp,
+        fog: args.fog.then_some(Fog {
+            distance: 3.0 * args.size as f32,
+        }),
+    }
+}
+
+/// One line on stderr for each effect asked for that cannot run, so that a
+/// user is not left wondering why it did not.
+fn explain_ignored(asked: &RenderOptions) {
+    let runs = asked.effective();
+    if asked.shadows && !runs.shadows && asked.sun.is_none() && !(asked.flat || asked.debug) {
+        eprintln!("note: the scene has no light (--sun none): --shadows traces no shadow rays");
+    }
+    let view = if asked.flat { "--flat" } else { "--debug" };
+    let mut ignored = Vec::new();
+    if asked.flat && asked.debug {
+        ignored.push("--debug");
+    }
+    if asked.flat || asked.debug {
+        if asked.shadows {
+            ignored.push("--shadows");
+        }
+        if asked.occlusion.is_some() {
+            ignored.push("--ao");
+        }
+        if asked.samples > 1 {
+            ignored.push("--spp");
+        }
+        if asked.fog.is_some() {
+            ignored.push("--fog");
+        }
+    }
+    if !ignored.is_empty() {
+        eprintln!(
+            "note: {view} draws no effects: ignoring {}",
+            ignored.join(", ")
+        );
+    }
 }
 
 /// Builds the scene and renders it with the thread count of `--threads`,
@@ -102,7 +156,7 @@ fn render_to(
     let threaded = args.threads != Some(1);
     let (built, build, rendered) = on_threads(args.threads, || {
         let (built, build) = BuiltScene::build(args.backend, args.size, seed, threaded)?;
-        let options = RenderOptions { flat: args.flat };
+        let options = render_options(args);
         let progress = Progress::rows(region.height);
         let rendered = built.render(camera, region, &options, threaded, &|rows| {
             progress.advance(rows);
@@ -129,8 +183,8 @@ fn render_to(
         eprintln!("render_ms: {:.3}", ms(rendered.elapsed));
         eprintln!("encode_ms: {:.3}", ms(encode));
         eprintln!("primary_rays: {}", rays.primary_rays);
-        eprintln!("shadow_rays: 0");
-        eprintln!("ao_rays: 0");
+        eprintln!("shadow_rays: {}", rays.shadow_rays);
+        eprintln!("ao_rays: {}", rays.ao_rays);
         eprintln!("storage_bytes: {}", built.scene().storage_bytes());
         eprintln!("mrays_per_s: {mrays:.3}");
     }

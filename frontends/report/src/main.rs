@@ -2,7 +2,9 @@
 //! writes the tables (markdown) and plots (PNG) the README shows.
 //!
 //! `cargo run --release -p voxtrace-report -- speed [--quick]`
+//! `cargo run --release -p voxtrace-report -- accuracy [--full]`
 
+mod accuracy;
 mod measure;
 mod plot;
 mod speed;
@@ -25,12 +27,16 @@ enum Report {
     /// Render and build times per backend and scene size, beside the seed
     /// paper's table; storage bytes; octree scaling to size 2048.
     Speed(speed::SpeedArgs),
+    /// Render time, rays and error against a converged reference for each
+    /// setting of each accuracy axis (samples, AO rays, shadows).
+    Accuracy(accuracy::AccuracyArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.report {
         Report::Speed(args) => speed::run(args),
+        Report::Accuracy(args) => accuracy::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,266 @@
+//! `voxtrace-report accuracy`: what accuracy costs in time. Renders a
+//! converged reference of one scene, then each setting along each accuracy
+//! axis, and records time, rays and error (RMSE, PSNR) against the
+//! reference.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use voxtrace::glam::Vec3;
+use voxtrace::{
+    render_parallel, unpack, Camera, CameraSettings, Framebuffer, IAabb, Occlusion, OctreeScene,
+    RayStats, Rect, RenderOptions, VoxelGenerator,
+};
+use voxtrace_cli::on_threads;
+
+use crate::measure::{cpu_name, format_ms, median_of};
+use crate::plot::{self, Chart, Line, Series};
+
+/// Options of the `accuracy` report.
+#[derive(Debug, clap::Args)]
+pub struct AccuracyArgs {
+    /// 1280x720 instead of 320x180 (about sixteen times as long).
+    #[arg(long)]
+    full: bool,
+    /// Timed runs per setting (after one untimed warm-up).
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u16).range(1..))]
+    runs: u16,
+    /// Worker threads [default: all cores].
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
+    threads: Option<u16>,
+    /// Folder for accuracy.md and accuracy.png.
+    #[arg(long, default_value = "docs/report")]
+    out_dir: PathBuf,
+    /// TrueType font for the plot's text [default: a system sans-serif].
+    #[arg(long)]
+    font: Option<PathBuf>,
+}
+
+/// The scene: terrain of seed 1 in a volume of side 128, seen from above
+/// one corner, low enough that slopes shade each other.
+const SEED: u64 = 1;
+const SIZE: i32 = 64;
+const EYE: Vec3 = Vec3::new(70.0, 58.0, 52.0);
+
+/// The look being approximated: the default sun, hard shadows and ambient
+/// occlusion within 8 voxels, over several samples per pixel.
+fn look(samples: u16, ao_rays: u16, shadows: bool) -> RenderOptions {
+    RenderOptions {
+        shadows,
+        occlusion: (ao_rays > 0).then_some(Occlusion {
+            rays: ao_rays,
+            distance: Occlusion::DEFAULT_DISTANCE,
+        }),
+        samples,
+        ..RenderOptions::default()
+    }
+}
+
+/// The reference: 256 samples per pixel with 4 occlusion rays each, so 1024
+/// occlusion rays per pixel, spread over the pixel's area.
+const REFERENCE: (u16, u16, bool) = (256, 4, true);
+
+/// One accuracy axis: its name and the settings along it, cheapest first.
+struct Axis {
+    name: &'static str,
+    settings: Vec<(String, RenderOptions)>,
+}
+
+fn axes() -> Vec<Axis> {
+    vec![
+        Axis {
+            name: "samples per pixel (4 AO rays each, shadows)",
+            settings: [1, 2, 4, 8, 16, 64]
+                .into_iter()
+                .map(|spp| (format!("spp {spp}"), look(spp, 4, true)))
+                .collect(),
+        },
+        Axis {
+            name: "AO rays (1 sample, shadows)",
+            settings: [0, 4, 16, 64]
+                .into_iter()
+                .map(|ao| (format!("ao {ao}"), look(1, ao, true)))
+                .collect(),
+        },
+        Axis {
+            name: "shadows (1 sample, 16 AO rays)",
+            settings: [false, true]
+                .into_iter()
+                .map(|on| {
+                    let name = if on { "shadows on" } else { "shadows off" };
+                    (name.to_string(), look(1, 16, on))
+                })
+                .collect(),
+        },
+    ]
+}
+
+/// One measured setting.
+struct Row {
+    axis: &'static str,
+    setting: String,
+    ms: f64,
+    rays: RayStats,
+    rmse: f64,
+}
+
+/// Renders the reference and every setting, writes `accuracy.md` and
+/// `accuracy.png` into `--out-dir`.
+pub fn run(args: &AccuracyArgs) -> Result<(), String> {
+    let (width, height) = if args.full { (1280, 720) } else { (320, 180) };
+    std::fs::create_dir_all(&args.out_dir)
+        .map_err(|e| format!("cannot create {}: {e}", args.out_dir.display()))?;
+    plot::load_font(args.font.as_deref())?;
+    let camera = Camera::new(CameraSettings {
+        width,
+        height,
+        lookfrom: EYE,
+        ..CameraSettings::default()
+    })
+    .map_err(|e| e.to_string())?;
+    let scene = OctreeScene::build(&VoxelGenerator::new(SEED), IAabb::centered(SIZE))
+        .map_err(|e| e.to_string())?;
+    let frame = Framebuffer::new(width, height).map_err(|e| e.to_string())?;
+    let runs = usize::from(args.runs);
+
+    let (rows, reference_ms, threads) = on_threads(args.threads, || {
+        let threads = voxtrace::rayon::current_num_threads();
+        let render = |options: &RenderOptions| -> Result<(std::time::Duration, RayStats), String> {
+            let started = std::time::Instant::now();
+            let rays = render_parallel(&scene, &camera, options, Rect::full(&camera), &frame)
+                .map_err(|e| e.to_string())?;
+            Ok((started.elapsed(), rays))
+        };
+        let (samples, ao, shadows) = REFERENCE;
+        eprintln!("reference: {samples} spp x {ao} AO rays, shadows, {width}x{height}");
+        let (elapsed, _) = render(&look(samples, ao, shadows))?;
+        let reference = snapshot(&frame)?;
+        let mut rows = Vec::new();
+        for axis in axes() {
+            for (setting, options) in axis.settings {
+                let mut rays = RayStats::default();
+                let ms = median_of(runs, || {
+                    let (elapsed, counted) = render(&options)?;
+                    rays = counted;
+                    Ok(elapsed)
+                })?;
+                let rmse = rmse(&snapshot(&frame)?, &reference);
+                eprintln!("{setting}: {} rmse {rmse:.3}", format_ms(ms));
+                rows.push(Row {
+                    axis: axis.name,
+                    setting,
+                    ms,
+                    rays,
+                    rmse,
+                });
+            }
+        }
+        Ok((rows, elapsed.as_secs_f64() * 1e3, threads))
+    })?;
+
+    let command = format!(
+        "cargo run --release -p voxtrace-report -- accuracy{}",
+        if args.full { " --full" } else { "" }
+    );
+    let md = table(&rows, &command, width, height, threads, runs, reference_ms);
+    let table_path = args.out_dir.join("accuracy.md");
+    std::fs::write(&table_path, md)
+        .map_err(|e| format!("cannot write {}: {e}", table_path.display()))?;
+    let plot_path = args.out_dir.join("accuracy.png");
+    plot::draw(&plot_path, &[chart(&rows, width, height)])?;
+    eprintln!("wrote {} and {}", table_path.display(), plot_path.display());
+    Ok(())
+}
+
+/// A copy of the frame's pixels.
+fn snapshot(frame: &Framebuffer) -> Result<Vec<u32>, String> {
+    let mut pixels = vec![0; frame.width() as usize * frame.height() as usize];
+    frame.copy_to(&mut pixels).map_err(|e| e.to_string())?;
+    Ok(pixels)
+}
+
+/// Root mean square difference over every color channel, in 0..=255 units.
+fn rmse(pixels: &[u32], reference: &[u32]) -> f64 {
+    let mut sum = 0.0;
+    for (&p, &r) in pixels.iter().zip(reference) {
+        let (p, r) = (unpack(p), unpack(r));
+        for c in 0..3 {
+            let d = f64::from(p[c]) - f64::from(r[c]);
+            sum += d * d;
+        }
+    }
+    (sum / (3 * pixels.len().max(1)) as f64).sqrt()
+}
+
+/// Peak signal to noise ratio for 8-bit channels; infinite for no error.
+fn psnr(rmse: f64) -> f64 {
+    20.0 * (255.0 / rmse).log10()
+}
+
+fn table(
+    rows: &[Row],
+    command: &str,
+    width: u32,
+    height: u32,
+    threads: usize,
+    runs: usize,
+    reference_ms: f64,
+) -> String {
+    let (samples, ao, _) = REFERENCE;
+    let mut md = String::new();
+    let _ = writeln!(
+        md,
+        "Measured by `{command}` on {} with {threads} threads: terrain seed {SEED}, \
+         size {SIZE} (octree), {width}x{height}, median of {runs} runs. \
+         Error against a reference of {samples} samples per pixel with {ao} occlusion \
+         rays each and shadows ({}).\n",
+        cpu_name(),
+        format_ms(reference_ms)
+    );
+    let _ = writeln!(
+        md,
+        "| axis | setting | time | primary rays | shadow rays | AO rays | RMSE | PSNR |\n|---|---|---|---|---|---|---|---|"
+    );
+    for row in rows {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {} | {} | {} | {:.2} | {:.1} dB |",
+            row.axis,
+            row.setting,
+            format_ms(row.ms),
+            row.rays.primary_rays,
+            row.rays.shadow_rays,
+            row.rays.ao_rays,
+            row.rmse,
+            psnr(row.rmse),
+        );
+    }
+    md
+}
+
+fn chart(rows: &[Row], width: u32, height: u32) -> Chart {
+    let mut series: Vec<Series> = Vec::new();
+    for row in rows {
+        if series.last().is_none_or(|s| s.name != row.axis) {
+            series.push(Series {
+                name: row.axis.to_string(),
+                points: Vec::new(),
+                color: series.len(),
+                line: Line::Thick,
+            });
+        }
+        if let Some(last) = series.last_mut() {
+            // A setting equal to the reference has no error to plot on a
+            // log axis; it is in the table.
+            if row.rmse > 0.0 {
+                last.points.push((row.ms, row.rmse));
+            }
+        }
+    }
+    Chart {
+        title: format!("Error against time, {width}x{height}"),
+        x_label: "ms per frame (median)".to_string(),
+        y_label: "RMSE against the reference (0-255)".to_string(),
+        series,
+    }
+}

@@ -1,0 +1,148 @@
+//! What a frame simulates: the render settings, each effect opt-in.
+
+use glam::Vec3;
+
+use crate::Error;
+
+/// The default sun: high, from +x and slightly from -z, so that tops are
+/// brightest and the two lit sides read apart (the seed paper's Fig. 1 look).
+pub const DEFAULT_SUN: Vec3 = Vec3::new(0.45, 1.0, -0.3);
+
+/// Ambient occlusion: `rays` rays over the hemisphere of each hit face; a
+/// ray that meets a voxel within `distance` is occluded.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Occlusion {
+    /// Rays per hit, at least 1.
+    pub rays: u16,
+    /// How far an occluder counts, in voxels; positive and finite.
+    pub distance: f32,
+}
+
+impl Occlusion {
+    /// The default reach: 8 voxels, a little more than a hill's shoulder.
+    pub const DEFAULT_DISTANCE: f32 = 8.0;
+}
+
+/// Distance fog: a hit at distance `t` blends toward the sky's horizon color
+/// by `min(t / distance, 1)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fog {
+    /// Distance at which a hit is all fog, in voxels; positive and finite.
+    pub distance: f32,
+}
+
+/// The look of a frame: which effects it simulates. Every effect is off
+/// unless asked for, and an effect that is off costs nothing per ray (the
+/// renderer picks a tracer compiled for the chosen set once per frame).
+///
+/// The default is the terrain's look: face shading under
+/// [`DEFAULT_SUN`], the sky gradient, one primary ray per pixel and nothing
+/// more.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderOptions {
+    /// Unshaded: every pixel is exactly the color of the voxel its ray hits
+    /// first, the sky is [`crate::FLAT_SKY`]; every other effect is ignored.
+    /// What palette checks and reference renderers compare against.
+    pub flat: bool,
+    /// The seed paper's debug view: voxels black, the edges of the boxes the
+    /// storage walks through (octree nodes, or cells for the dense array)
+    /// drawn in a color hashed from each box's position; other effects are
+    /// ignored.
+    pub debug: bool,
+    /// Direction toward the scene's one light, the sun (need not be unit
+    /// length). `None`: the scene has no light; faces get fixed per-face
+    /// brightnesses and no shadow rays are traced.
+    pub sun: Option<Vec3>,
+    /// Hard shadows: one ray toward the sun from each hit whose face the sun
+    /// lights.
+    pub shadows: bool,
+    /// Ambient occlusion, off when `None`.
+    pub occlusion: Option<Occlusion>,
+    /// Samples per pixel (anti-aliasing), at least 1; 1 samples the pixel's
+    /// center.
+    pub samples: u16,
+    /// Distance fog, off when `None`.
+    pub fog: Option<Fog>,
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        Self::terrain()
+    }
+}
+
+impl RenderOptions {
+    /// The terrain's look (the default): face shading under [`DEFAULT_SUN`],
+    /// one sample per pixel, no secondary rays.
+    #[must_use]
+    pub const fn terrain() -> Self {
+        Self {
+            flat: false,
+            debug: false,
+            sun: Some(DEFAULT_SUN),
+            shadows: false,
+            occlusion: None,
+            samples: 1,
+            fog: None,
+        }
+    }
+
+    /// The unshaded look (`flat` on, everything else off).
+    #[must_use]
+    pub const fn flat() -> Self {
+        Self {
+            flat: true,
+            ..Self::terrain()
+        }
+    }
+
+    /// Checks every setting is usable: a finite non-zero sun, at least one
+    /// sample, at least one occlusion ray, positive finite distances.
+    pub fn validate(&self) -> Result<(), Error> {
+        let invalid = |reason| Err(Error::InvalidOptions { reason });
+        if let Some(sun) = self.sun {
+            if !sun.is_finite() || sun == Vec3::ZERO {
+                return invalid("the sun direction must be finite and non-zero");
+            }
+        }
+        if self.samples == 0 {
+            return invalid("samples per pixel must be at least 1");
+        }
+        if let Some(ao) = self.occlusion {
+            if ao.rays == 0 {
+                return invalid("ambient occlusion needs at least one ray");
+            }
+            if !(ao.distance > 0.0 && ao.distance.is_finite()) {
+                return invalid("the occlusion distance must be positive and finite");
+            }
+        }
+        if let Some(fog) = self.fog {
+            if !(fog.distance > 0.0 && fog.distance.is_finite()) {
+                return invalid("the fog distance must be positive and finite");
+            }
+        }
+        Ok(())
+    }
+
+    /// The effects that will actually run: the settings with what cannot
+    /// apply turned off. Shadows need a sun; `flat` and `debug` draw no
+    /// shading at all. Compare with `self` to tell a user what was ignored.
+    #[must_use]
+    pub fn effective(&self) -> RenderOptions {
+        if self.flat || self.debug {
+            return RenderOptions {
+                flat: self.flat,
+                debug: self.debug && !self.flat,
+                sun: None,
+                shadows: false,
+                occlusion: None,
+                samples: 1,
+                fog: None,
+            };
+        }
+        RenderOptions {
+            shadows: self.shadows && self.sun.is_some(),
+            ..*self
+        }
+    }
+}

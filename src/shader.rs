@@ -1,0 +1,286 @@
+//! The per-frame shader: the effects a frame asked for, resolved once into a
+//! tracer compiled for exactly that set.
+//!
+//! [`Shader::dispatch`] matches on the effect set once and hands a job a
+//! kernel type whose effect switches are `const` generics, so the per-pixel
+//! code of a frame without shadows contains no shadow test at all (and so
+//! on for every effect). Every renderer (pixel, span, region, threaded) is a
+//! job, so they all compute pixels with the same code.
+
+use glam::{U8Vec3, UVec3, Vec3};
+
+use crate::camera::Camera;
+use crate::debug_view::{box_color, enters_near_edge};
+use crate::geom::{Face, Hit, Ray};
+use crate::options::RenderOptions;
+use crate::render::RayStats;
+use crate::sampling::{cosine_hemisphere, pixel_key, r2};
+use crate::scene::Scene;
+use crate::shade::{face_index, face_weights, fog_blend, lit, pack, sky, FLAT_SKY};
+
+/// How wide the debug view's edges are: a fraction of a pixel's footprint
+/// each side of the edge.
+const EDGE_PIXELS: f32 = 0.75;
+
+/// Everything a frame's pixels need, computed once per frame.
+pub(crate) struct Shader<'c> {
+    camera: &'c Camera,
+    options: RenderOptions,
+    /// Brightness out of 256 per face (index [`face_index`]) in full light.
+    light: [u16; 7],
+    /// Brightness per face when the sun is blocked.
+    shadowed: [u16; 7],
+    /// Faces the sun shines on (`n . sun > 0`): only they cast shadow rays.
+    sunlit: [bool; 7],
+    /// Unit direction toward the sun.
+    sun: Vec3,
+    /// The debug view's edge half-width per unit of distance.
+    edge_per_t: f32,
+}
+
+impl<'c> Shader<'c> {
+    /// The shader of `options` for `camera`'s frame. Settings
+    /// [`RenderOptions::validate`] rejects are turned off, never a panic.
+    pub(crate) fn new(options: &RenderOptions, camera: &'c Camera) -> Self {
+        let mut options = options.effective();
+        if options.validate().is_err() {
+            options.sun = options.sun.filter(|s| s.is_finite() && *s != Vec3::ZERO);
+            options.shadows &= options.sun.is_some();
+            options.samples = options.samples.max(1);
+            options.occlusion = options
+                .occlusion
+                .filter(|ao| ao.rays > 0 && ao.distance > 0.0 && ao.distance.is_finite());
+            options.fog = options
+                .fog
+                .filter(|fog| fog.distance > 0.0 && fog.distance.is_finite());
+        }
+        let (light, shadowed, sunlit, sun) = face_weights(options.sun);
+        Shader {
+            camera,
+            options,
+            light,
+            shadowed,
+            sunlit,
+            sun,
+            edge_per_t: EDGE_PIXELS * camera.pixel_spread(),
+        }
+    }
+
+    /// Runs `job` with the kernel compiled for this frame's effects.
+    pub(crate) fn dispatch<J: FrameJob>(&self, job: J) -> J::Output {
+        let o = &self.options;
+        if o.flat {
+            return job.run(&Flat(self));
+        }
+        if o.debug {
+            return job.run(&Debug(self));
+        }
+        let set = (
+            o.shadows,
+            o.occlusion.is_some(),
+            o.fog.is_some(),
+            o.samples > 1,
+        );
+        macro_rules! lit_kernels {
+            ($(($sh:literal, $ao:literal, $fog:literal, $aa:literal)),* $(,)?) => {
+                match set {
+                    $(($sh, $ao, $fog, $aa) => job.run(&Lit::<$sh, $ao, $fog, $aa>(self)),)*
+                }
+            };
+        }
+        lit_kernels!(
+            (false, false, false, false),
+            (false, false, false, true),
+            (false, false, true, false),
+            (false, false, true, true),
+            (false, true, false, false),
+            (false, true, false, true),
+            (false, true, true, false),
+            (false, true, true, true),
+            (true, false, false, false),
+            (true, false, false, true),
+            (true, false, true, false),
+            (true, false, true, true),
+            (true, true, false, false),
+            (true, true, false, true),
+            (true, true, true, false),
+            (true, true, true, true),
+        )
+    }
+}
+
+/// Something done to a frame's pixels with one kernel: a pixel, a span, a
+/// region, a threaded frame.
+pub(crate) trait FrameJob {
+    /// What the job returns.
+    type Output;
+    /// Does the job with `kernel`, which computes each pixel.
+    fn run<K: Kernel>(self, kernel: &K) -> Self::Output;
+}
+
+/// Computes pixels with one fixed set of effects.
+pub(crate) trait Kernel: Sync {
+    /// Pixel `(x, y)` of the frame: packed color and the rays it traced.
+    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32) -> (u32, RayStats);
+}
+
+/// Rays counted for one primary ray and its hit.
+fn primary(hit: Option<&Hit>) -> RayStats {
+    RayStats {
+        primary_rays: 1,
+        primary_hits: u64::from(hit.is_some()),
+        ..RayStats::default()
+    }
+}
+
+/// The unshaded look.
+struct Flat<'s, 'c>(&'s Shader<'c>);
+
+impl Kernel for Flat<'_, '_> {
+    #[inline]
+    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32) -> (u32, RayStats) {
+        let ray = self.0.camera.get_ray(x, y);
+        let hit = scene.trace(&ray);
+        let color = hit.map_or(FLAT_SKY, |h| h.voxel.color);
+        (pack(color), primary(hit.as_ref()))
+    }
+}
+
+/// The debug view: box edges over black voxels and the sky.
+struct Debug<'s, 'c>(&'s Shader<'c>);
+
+impl Kernel for Debug<'_, '_> {
+    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32) -> (u32, RayStats) {
+        let ray = self.0.camera.get_ray(x, y);
+        let mut edge = None;
+        let traced = scene.trace_visiting(&ray, &mut |cube| {
+            if enters_near_edge(&ray, cube, self.0.edge_per_t) {
+                edge = Some(box_color(cube));
+            }
+            edge.is_none()
+        });
+        let color = match (edge, traced.hit) {
+            (Some(color), _) => color,
+            (None, Some(_)) => U8Vec3::ZERO,
+            (None, None) => sky(ray.dir()),
+        };
+        // A ray stopped at an edge still counts as one primary ray.
+        (pack(color), primary(traced.hit.as_ref()))
+    }
+}
+
+/// The lit look with the chosen effects: shadows, ambient occlusion, fog and
+/// several samples per pixel, each compiled in only when on.
+struct Lit<'s, 'c, const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>(
+    &'s Shader<'c>,
+);
+
+impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kernel
+    for Lit<'_, '_, SHADOWS, AO, FOG, AA>
+{
+    #[inline]
+    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32) -> (u32, RayStats) {
+        let camera = self.0.camera;
+        if !AA {
+            let (color, stats) = self.sample(scene, &camera.get_ray(x, y), x, y, 0);
+            return (pack(color), stats);
+        }
+        let samples = u32::from(self.0.options.samples);
+        let key = pixel_key(x, y, 0);
+        let mut sum = UVec3::ZERO;
+        let mut stats = RayStats::default();
+        for s in 0..samples {
+            let offset = r2(s, key);
+            let ray = camera.get_ray_at(x as f32 + offset.x, y as f32 + offset.y);
+            let (color, rays) = self.sample(scene, &ray, x, y, s);
+            sum += color.as_uvec3();
+            stats += rays;
+        }
+        // The rounded mean, in integers.
+        let mean = (sum + UVec3::splat(samples / 2)) / samples;
+        (pack(mean.as_u8vec3()), stats)
+    }
+}
+
+impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
+    Lit<'_, '_, SHADOWS, AO, FOG, AA>
+{
+    /// One camera sample: its color and rays.
+    #[inline]
+    fn sample<S: Scene + ?Sized>(
+        &self,
+        scene: &S,
+        ray: &Ray,
+        x: u32,
+        y: u32,
+        sample: u32,
+    ) -> (U8Vec3, RayStats) {
+        let shader = self.0;
+        let hit = scene.trace(ray);
+        let mut stats = primary(hit.as_ref());
+        let Some(hit) = hit else {
+            return (sky(ray.dir()), stats);
+        };
+        let face = face_index(hit.face);
+        let mut light = u32::from(shader.light[face]);
+        if SHADOWS && shader.sunlit[face] {
+            stats.shadow_rays += 1;
+            if let Some(shadow) = secondary(ray, &hit, shader.sun) {
+                if scene.trace(&shadow).is_some() {
+                    light = u32::from(shader.shadowed[face]);
+                }
+            }
+        }
+        if AO {
+            if let (Some(entered), Some(ao)) = (hit.face, shader.options.occlusion) {
+                let rays = u32::from(ao.rays);
+                let key = pixel_key(x, y, 1 + sample);
+                let mut open = 0;
+                for j in 0..rays {
+                    let dir = around(entered, cosine_hemisphere(r2(j, key)));
+                    let blocked = secondary(ray, &hit, dir)
+                        .and_then(|r| scene.trace(&r))
+                        .is_some_and(|h| h.t <= ao.distance);
+                    open += u32::from(!blocked);
+                }
+                stats.ao_rays += u64::from(rays);
+                light = light * open / rays;
+            }
+        }
+        let mut color = lit(hit.voxel.color, light);
+        if FOG {
+            if let Some(fog) = shader.options.fog {
+                color = fog_blend(color, hit.t, fog.distance);
+            }
+        }
+        (color, stats)
+    }
+}
+
+/// A ray leaving `hit`'s entry face along `dir` (which points out of the
+/// face): it starts in the empty cell in front of the face, a small step off
+/// the face's plane, so it can never hit the voxel it leaves. `None` for a
+/// hit without a face (a ray that started inside the voxel).
+fn secondary(ray: &Ray, hit: &Hit, dir: Vec3) -> Option<Ray> {
+    let face = hit.face?;
+    let axis = face.axis();
+    let normal = face.normal()[axis];
+    // The plane of the face, and a step off it that survives rounding at
+    // any coordinate: 1/256, or one unit in the last place far out.
+    let plane = (hit.pos[axis] + i32::from(normal > 0)) as f32;
+    let step = (1.0 / 256.0f32).max(plane.abs() * f32::EPSILON);
+    let cell = hit.pos.as_vec3();
+    let mut origin = ray.at(hit.t).clamp(cell, cell + 1.0);
+    origin[axis] = plane + normal as f32 * step;
+    Ray::new(origin, dir).ok()
+}
+
+/// `local` (around `+z`) turned to the hemisphere around `face`'s normal.
+fn around(face: Face, local: Vec3) -> Vec3 {
+    let axis = face.axis();
+    let mut dir = Vec3::ZERO;
+    dir[axis] = local.z * face.normal()[axis] as f32;
+    dir[(axis + 1) % 3] = local.x;
+    dir[(axis + 2) % 3] = local.y;
+    dir
+}
