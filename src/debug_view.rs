@@ -67,8 +67,10 @@ pub(crate) fn box_color(cube: IAabb) -> U8Vec3 {
 pub(crate) fn enters_near_edge(ray: &Ray, cube: IAabb, width_per_t: f32) -> bool {
     let lo = (cube.min.as_vec3() - ray.origin()) * ray.inv_dir();
     let hi = (cube.max.as_vec3() - ray.origin()) * ray.inv_dir();
-    // `min` drops a NaN (0 * inf, a ray in a face's plane) for the other.
-    let near = lo.min(hi);
+    // A ray parallel to an axis' planes is inside that slab all along (the
+    // walk visited the box); its crossings may be NaN (0 * inf) or infinite.
+    let parallel = ray.dir().cmpeq(glam::Vec3::ZERO);
+    let near = glam::Vec3::select(parallel, glam::Vec3::NEG_INFINITY, lo.min(hi));
     let t = near.max_element().max(0.0);
     let width = width_per_t * t;
     if !(width > 0.0 && width.is_finite()) {

@@ -220,6 +220,11 @@ fn bad_input_exits_2_with_one_line_naming_the_value() {
         (&["--region", "300,0,64,64"], "300,0,64,64"),
         (&["--threads", "0"], "0"),
         (&["--threads", "-3"], "-3"),
+        (&["--spp", "0"], "0"),
+        (&["--ao", "0"], "0"),
+        (&["--ao", "2", "--ao-distance", "-1"], "-1"),
+        (&["--sun", "0,0,0"], "0,0,0"),
+        (&["--sun", "up"], "up"),
         (&["--out", unwritable], unwritable),
         (
             &["--size", "4194304", "--backend", "dense"],
@@ -245,4 +250,81 @@ fn bad_input_exits_2_with_one_line_naming_the_value() {
         );
         assert!(!stderr.contains("panicked"), "{stderr}");
     }
+}
+
+/// `key: value` lines of `--stats` as numbers.
+fn stat(stderr: &str, key: &str) -> u64 {
+    stderr
+        .lines()
+        .find_map(|l| l.strip_prefix(&format!("{key}: ")))
+        .unwrap_or_else(|| panic!("no {key} in {stderr}"))
+        .parse()
+        .unwrap()
+}
+
+fn stats_with(extra: &[&str]) -> String {
+    let out = scratch("effects.png");
+    let mut args = vec![
+        "--size",
+        "30",
+        "--width",
+        "32",
+        "--height",
+        "16",
+        "--seed",
+        "3",
+        "--position",
+        "40,60,30",
+        "--stats",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let result = voxtrace(&args);
+    let stderr = String::from_utf8(result.stderr).unwrap();
+    assert!(result.status.success(), "{stderr}");
+    stderr
+}
+
+#[test]
+fn each_effect_flag_counts_its_rays_and_only_its_rays() {
+    let plain = stats_with(&[]);
+    assert_eq!(stat(&plain, "primary_rays"), 512);
+    assert_eq!(stat(&plain, "shadow_rays"), 0);
+    assert_eq!(stat(&plain, "ao_rays"), 0);
+
+    let shadows = stats_with(&["--shadows"]);
+    assert!(stat(&shadows, "shadow_rays") > 0, "{shadows}");
+    assert!(stat(&shadows, "shadow_rays") <= 512);
+    assert_eq!(stat(&shadows, "ao_rays"), 0);
+
+    let ao = stats_with(&["--ao", "3"]);
+    let ao_rays = stat(&ao, "ao_rays");
+    assert!(
+        ao_rays > 0 && ao_rays % 3 == 0 && ao_rays <= 3 * 512,
+        "{ao}"
+    );
+    assert_eq!(stat(&ao, "shadow_rays"), 0);
+
+    let spp = stats_with(&["--spp", "4"]);
+    assert_eq!(stat(&spp, "primary_rays"), 4 * 512);
+    assert_eq!(stat(&spp, "shadow_rays") + stat(&spp, "ao_rays"), 0);
+}
+
+#[test]
+fn shadows_without_a_sun_trace_nothing_and_say_so_once() {
+    let stderr = stats_with(&["--sun", "none", "--shadows"]);
+    assert_eq!(stat(&stderr, "shadow_rays"), 0);
+    let notes: Vec<&str> = stderr.lines().filter(|l| l.starts_with("note:")).collect();
+    assert_eq!(notes.len(), 1, "{stderr}");
+    assert!(notes[0].contains("no light"), "{stderr}");
+    // Effects under --flat are named as ignored, once.
+    let stderr = stats_with(&["--flat", "--ao", "2", "--spp", "2"]);
+    assert_eq!(stat(&stderr, "ao_rays"), 0);
+    assert_eq!(stat(&stderr, "primary_rays"), 512);
+    let notes: Vec<&str> = stderr.lines().filter(|l| l.starts_with("note:")).collect();
+    assert_eq!(
+        notes,
+        ["note: --flat draws no effects: ignoring --ao, --spp"]
+    );
 }
