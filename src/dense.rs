@@ -27,6 +27,7 @@ pub struct DenseScene<B> {
 
 impl<B> DenseScene<B> {
     /// Assembles a scene from cells already laid out for `bounds`.
+    #[cfg(feature = "alloc")]
     pub(crate) fn from_parts(bounds: IAabb, cells: B, palette: Palette) -> Self {
         DenseScene {
             bounds,
@@ -119,10 +120,11 @@ impl<B: AsRef<[u8]>> DenseScene<B> {
 }
 
 impl<B: AsRef<[u8]>> DenseScene<B> {
-    /// The cell walk, showing `visit` each empty cell it leaves; monomorphized
-    /// so that tracing without a visitor pays nothing for it.
+    /// The cell walk, showing `visit` each empty cell it leaves and giving up
+    /// once it enters a cell farther than `t_max`; monomorphized so that
+    /// tracing without a visitor pays nothing for it.
     #[inline]
-    fn walk<V: FnMut(IAabb) -> bool>(&self, ray: &Ray, mut visit: V) -> Traced {
+    fn walk<V: FnMut(IAabb) -> bool>(&self, ray: &Ray, t_max: f32, mut visit: V) -> Traced {
         let Some(mut walk) = Walk::start(ray, &self.bounds) else {
             return Traced {
                 hit: None,
@@ -151,7 +153,7 @@ impl<B: AsRef<[u8]>> DenseScene<B> {
                 min: pos,
                 max: pos + 1,
             };
-            if !visit(cell) || !walk.step() {
+            if !visit(cell) || !walk.step() || walk.key().t > t_max {
                 return Traced {
                     hit: None,
                     steps: walk.steps(),
@@ -167,11 +169,16 @@ impl<B: AsRef<[u8]>> Scene for DenseScene<B> {
     }
 
     fn trace_counted(&self, ray: &Ray) -> Traced {
-        self.walk(ray, |_| true)
+        self.walk(ray, f32::INFINITY, |_| true)
     }
 
     fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced {
-        self.walk(ray, visit)
+        self.walk(ray, f32::INFINITY, visit)
+    }
+
+    fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        let hit = self.walk(ray, t_max, |_| true).hit;
+        hit.filter(|h| h.t <= t_max)
     }
 
     fn storage_bytes(&self) -> usize {

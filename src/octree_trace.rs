@@ -35,11 +35,16 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
     }
 
     fn trace_counted(&self, ray: &Ray) -> Traced {
-        self.walk(ray, |_| true)
+        self.walk(ray, f32::INFINITY, |_| true)
     }
 
     fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced {
-        self.walk(ray, visit)
+        self.walk(ray, f32::INFINITY, visit)
+    }
+
+    fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        let hit = self.walk(ray, t_max, |_| true).hit;
+        hit.filter(|h| h.t <= t_max)
     }
 
     fn storage_bytes(&self) -> usize {
@@ -51,10 +56,11 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
 }
 
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
-    /// The box-at-a-time walk, showing `visit` each empty cube it leaves;
-    /// monomorphized so that tracing without a visitor pays nothing for it.
+    /// The box-at-a-time walk, showing `visit` each empty cube it leaves and
+    /// giving up once it enters a cube farther than `t_max`; monomorphized so
+    /// that tracing without a visitor pays nothing for it.
     #[inline]
-    fn walk<V: FnMut(IAabb) -> bool>(&self, ray: &Ray, mut visit: V) -> Traced {
+    fn walk<V: FnMut(IAabb) -> bool>(&self, ray: &Ray, t_max: f32, mut visit: V) -> Traced {
         let Some(walk) = Walk::start(ray, &self.bounds) else {
             return Traced {
                 hit: None,
@@ -133,8 +139,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             if !visit(empty) {
                 return Traced { hit: None, steps };
             }
-            if exit.t == f32::INFINITY {
-                // No plane of the cube is ever reached in f32.
+            if exit.t == f32::INFINITY || exit.t > t_max {
+                // No plane of the cube is ever reached in f32, or the rest
+                // of the ray is beyond the caller's reach.
                 return Traced { hit: None, steps };
             }
             let axis = exit.axis as usize;

@@ -38,6 +38,15 @@ pub trait Scene {
         self.trace_counted(ray).hit
     }
 
+    /// The first solid voxel along `ray` if it is at most `t_max` away:
+    /// exactly `trace(ray).filter(|h| h.t <= t_max)`, but the storages of
+    /// this crate stop walking once `t_max` is passed (what makes short
+    /// occlusion rays cheap).
+    #[inline]
+    fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        self.trace(ray).filter(|h| h.t <= t_max)
+    }
+
     /// Bytes of voxel storage this scene holds (arrays and palette).
     fn storage_bytes(&self) -> usize;
 }
@@ -53,6 +62,10 @@ impl<S: Scene + ?Sized> Scene for &S {
 
     fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced {
         (**self).trace_visiting(ray, visit)
+    }
+
+    fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        (**self).trace_within(ray, t_max)
     }
 
     fn storage_bytes(&self) -> usize {

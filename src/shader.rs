@@ -239,8 +239,8 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
                 for j in 0..rays {
                     let dir = around(entered, cosine_hemisphere(r2(j, key)));
                     let blocked = secondary(ray, &hit, dir)
-                        .and_then(|r| scene.trace(&r))
-                        .is_some_and(|h| h.t <= ao.distance);
+                        .and_then(|r| scene.trace_within(&r, ao.distance))
+                        .is_some();
                     open += u32::from(!blocked);
                 }
                 stats.ao_rays += u64::from(rays);

@@ -25,6 +25,24 @@ fn assert_backends_agree<S: VoxelSource>(source: &S, bounds: IAabb, rays: usize,
             assert_eq!(hit.t.to_bits(), b.hit.unwrap().t.to_bits());
             hits += 1;
         }
+        // The reach-limited trace is the full trace cut at `t_max`, whether
+        // `t_max` falls before, at or after the hit.
+        let reach = match a.hit {
+            Some(hit) if i % 3 == 0 => hit.t,
+            Some(hit) if i % 3 == 1 => hit.t * 0.999,
+            _ => rng.range(0.0, 2.0 * bounds.size().max_element() as f32),
+        };
+        let expected = a.hit.filter(|h| h.t <= reach);
+        assert_eq!(
+            dense.trace_within(&ray, reach),
+            expected,
+            "ray {i} within {reach}"
+        );
+        assert_eq!(
+            octree.trace_within(&ray, reach),
+            expected,
+            "ray {i} within {reach}"
+        );
         assert!(
             a.steps <= bound && b.steps <= bound,
             "ray {i} took {} / {} > {bound} steps",
