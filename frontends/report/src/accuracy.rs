@@ -15,11 +15,12 @@ use voxtrace_cli::on_threads;
 
 use crate::measure::{cpu_name, format_ms, median_of};
 use crate::plot::{self, Chart, Line, Series};
+use plotters::chart::SeriesLabelPosition;
 
 /// Options of the `accuracy` report.
 #[derive(Debug, clap::Args)]
 pub struct AccuracyArgs {
-    /// 1280x720 instead of 320x180 (about sixteen times as long).
+    /// 1920x1080 instead of 640x360 (about nine times as long).
     #[arg(long)]
     full: bool,
     /// Timed runs per setting (after one untimed warm-up).
@@ -107,7 +108,7 @@ struct Row {
 /// Renders the reference and every setting, writes `accuracy.md` and
 /// `accuracy.png` into `--out-dir`.
 pub fn run(args: &AccuracyArgs) -> Result<(), String> {
-    let (width, height) = if args.full { (1280, 720) } else { (320, 180) };
+    let (width, height) = if args.full { (1920, 1080) } else { (640, 360) };
     std::fs::create_dir_all(&args.out_dir)
         .map_err(|e| format!("cannot create {}: {e}", args.out_dir.display()))?;
     plot::load_font(args.font.as_deref())?;
@@ -262,5 +263,6 @@ fn chart(rows: &[Row], width: u32, height: u32) -> Chart {
         x_label: "ms per frame (median)".to_string(),
         y_label: "RMSE against the reference (0-255)".to_string(),
         series,
+        legend: SeriesLabelPosition::LowerLeft,
     }
 }

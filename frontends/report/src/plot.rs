@@ -49,8 +49,10 @@ pub struct Chart {
     pub x_label: String,
     /// Label of the vertical axis.
     pub y_label: String,
-    /// The lines, colored in order.
+    /// The lines.
     pub series: Vec<Series>,
+    /// The corner for the legend, where the lines are not.
+    pub legend: SeriesLabelPosition,
 }
 
 /// Places where common systems keep a sans-serif TrueType font.
@@ -176,7 +178,7 @@ fn draw_chart(
     }
     context
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
+        .position(chart.legend.clone())
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK.mix(0.4))
         .label_font(("sans-serif", 15))

@@ -11,6 +11,7 @@ use voxtrace_cli::{above_position, on_threads, paper_position, Backend, BuiltSce
 use crate::measure::{cpu_name, format_bytes, format_ms, median_of};
 use crate::plot::{self, Chart, Line, Series};
 use crate::surface::surface_voxels;
+use plotters::chart::SeriesLabelPosition;
 
 /// Options of the `speed` report.
 #[derive(Debug, clap::Args)]
@@ -415,12 +416,14 @@ fn charts(measured: &[Measured], threads: usize) -> Vec<Chart> {
             x_label: "scene size (volume = (2·size)³)".to_string(),
             y_label: "ms per frame (median)".to_string(),
             series: time,
+            legend: SeriesLabelPosition::UpperLeft,
         },
         Chart {
             title: "Storage".to_string(),
             x_label: "scene size (volume = (2·size)³)".to_string(),
             y_label: "MB (storage_bytes / 10⁶)".to_string(),
             series: memory,
+            legend: SeriesLabelPosition::UpperLeft,
         },
     ]
 }
