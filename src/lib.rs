@@ -7,6 +7,12 @@
 //! with one tie rule (x before y before z) and the octree only jumps over
 //! boxes it knows are empty.
 //!
+//! What a frame simulates is [`RenderOptions`]: the terrain's look by
+//! default (face shading under a sun, one primary ray per pixel), with
+//! shadows, ambient occlusion, anti-aliasing, fog and the seed paper's debug
+//! view each opt-in; the renderer picks a pixel kernel compiled for exactly
+//! the chosen effects once per frame, and [`RayStats`] counts rays by kind.
+//!
 //! The core is `#![no_std]` and allocation-explicit: storages build into
 //! caller buffers (`build_in`, sized by `required_len`), or under the `alloc`
 //! feature into vectors reserved with `try_reserve` (`build`); the tracer

@@ -73,7 +73,7 @@ impl<'c> Shader<'c> {
             return job.run(&Flat(self));
         }
         if o.debug {
-            return job.run(&Debug(self));
+            return job.run(&DebugView(self));
         }
         let set = (
             o.shadows,
@@ -147,9 +147,9 @@ impl Kernel for Flat<'_, '_> {
 }
 
 /// The debug view: box edges over black voxels and the sky.
-struct Debug<'s, 'c>(&'s Shader<'c>);
+struct DebugView<'s, 'c>(&'s Shader<'c>);
 
-impl Kernel for Debug<'_, '_> {
+impl Kernel for DebugView<'_, '_> {
     fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32) -> (u32, RayStats) {
         let ray = self.0.camera.get_ray(x, y);
         let mut edge = None;
