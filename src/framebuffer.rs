@@ -99,6 +99,16 @@ impl Framebuffer {
         Ok(())
     }
 
+    /// A copy of the pixels in the scalar layout (row-major, packed),
+    /// leaving the framebuffer as it is. Allocates the copy.
+    #[must_use]
+    pub fn to_vec(&self) -> Vec<u32> {
+        self.pixels
+            .iter()
+            .map(|p| p.load(Ordering::Relaxed))
+            .collect()
+    }
+
     /// The pixels as plain `u32`s in the scalar render's layout, reusing
     /// the framebuffer's allocation.
     #[must_use]
@@ -115,6 +125,6 @@ impl Framebuffer {
             .iter()
             .flat_map(|p| p.load(Ordering::Relaxed).to_ne_bytes())
             .collect();
-        crate::image_out::encode_rgba8(writer, self.width, self.height, &bytes)
+        crate::png_io::encode_rgba8(writer, self.width, self.height, &bytes)
     }
 }

@@ -83,7 +83,9 @@ mod voxel;
 mod walk;
 
 #[cfg(feature = "png")]
-mod image_out;
+mod golden;
+#[cfg(feature = "png")]
+mod png_io;
 
 pub use camera::{Camera, CameraSettings, DEFAULT_FOV};
 pub use dense::DenseScene;
@@ -102,9 +104,11 @@ pub use walk::max_steps;
 #[cfg(feature = "std")]
 pub use framebuffer::Framebuffer;
 #[cfg(feature = "png")]
-pub use image_out::{encode_png, write_png};
+pub use golden::{Golden, GoldenError, UPDATE_GOLDEN};
 #[cfg(feature = "rayon")]
 pub use par_pixels::{ParPixels, PixelRef, Pixels};
+#[cfg(feature = "png")]
+pub use png_io::{decode_png, encode_png, read_png, write_png};
 #[cfg(feature = "rayon")]
 pub use render_par::{render_parallel, render_parallel_with_progress};
 

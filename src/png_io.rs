@@ -1,0 +1,84 @@
+//! PNG encoding and decoding of packed pixels (feature `png`).
+
+use std::io::Write;
+use std::vec::Vec;
+
+/// Encodes `width x height` packed RGBA8 pixels (see [`crate::pack`]) as a
+/// PNG into `writer`. Fails if `pixels` is shorter than the image.
+pub fn encode_png<W: Write>(
+    writer: W,
+    width: u32,
+    height: u32,
+    pixels: &[u32],
+) -> Result<(), png::EncodingError> {
+    let len = width as usize * height as usize;
+    let pixels = pixels.get(..len).ok_or_else(|| {
+        png::EncodingError::IoError(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            std::format!("{len} pixels needed, {} given", pixels.len()),
+        ))
+    })?;
+    let bytes: Vec<u8> = pixels.iter().flat_map(|p| p.to_ne_bytes()).collect();
+    encode_rgba8(writer, width, height, &bytes)
+}
+
+/// The one PNG encoder: RGBA, 8 bits per channel, `width * height * 4`
+/// bytes in `bytes`.
+pub(crate) fn encode_rgba8<W: Write>(
+    writer: W,
+    width: u32,
+    height: u32,
+    bytes: &[u8],
+) -> Result<(), png::EncodingError> {
+    let mut encoder = png::Encoder::new(writer, width, height);
+    encoder.set_color(png::ColorType::Rgba);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder.write_header()?;
+    writer.write_image_data(bytes)?;
+    writer.finish()
+}
+
+/// Writes `pixels` as a PNG file at `path`.
+pub fn write_png(
+    path: &std::path::Path,
+    width: u32,
+    height: u32,
+    pixels: &[u32],
+) -> Result<(), png::EncodingError> {
+    let file = std::fs::File::create(path)?;
+    encode_png(std::io::BufWriter::new(file), width, height, pixels)
+}
+
+/// Decodes a PNG into `(width, height, pixels)` with pixels packed as
+/// [`crate::pack`] does. Any color type and bit depth is accepted:
+/// grayscale, palette and RGB become opaque RGBA, 16-bit channels keep
+/// their high byte.
+pub fn decode_png<R: std::io::BufRead + std::io::Seek>(
+    reader: R,
+) -> Result<(u32, u32, Vec<u32>), png::DecodingError> {
+    let mut decoder = png::Decoder::new(reader);
+    decoder.set_transformations(png::Transformations::normalize_to_color8());
+    let mut reader = decoder.read_info()?;
+    let size = reader
+        .output_buffer_size()
+        .ok_or_else(|| png::DecodingError::LimitsExceeded)?;
+    let mut buf = std::vec![0; size];
+    let info = reader.next_frame(&mut buf)?;
+    let bytes = &buf[..info.buffer_size()];
+    let pixel = |c: &[u8]| match info.color_type {
+        png::ColorType::Rgba => u32::from_ne_bytes([c[0], c[1], c[2], c[3]]),
+        png::ColorType::Rgb => u32::from_ne_bytes([c[0], c[1], c[2], 255]),
+        png::ColorType::GrayscaleAlpha => u32::from_ne_bytes([c[0], c[0], c[0], c[1]]),
+        // Grayscale (palettes are expanded to RGB or RGBA by the decoder).
+        _ => u32::from_ne_bytes([c[0], c[0], c[0], 255]),
+    };
+    let channels = info.color_type.samples();
+    let pixels = bytes.chunks_exact(channels).map(pixel).collect();
+    Ok((info.width, info.height, pixels))
+}
+
+/// Reads the PNG file at `path` (see [`decode_png`]).
+pub fn read_png(path: &std::path::Path) -> Result<(u32, u32, Vec<u32>), png::DecodingError> {
+    let file = std::fs::File::open(path)?;
+    decode_png(std::io::BufReader::new(file))
+}
