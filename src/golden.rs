@@ -12,7 +12,7 @@
 //! # Ok(()) }
 //! ```
 
-use std::fmt;
+use core::fmt;
 use std::path::{Path, PathBuf};
 use std::string::String;
 use std::vec::Vec;
@@ -126,7 +126,7 @@ impl fmt::Display for GoldenError {
     }
 }
 
-impl std::error::Error for GoldenError {}
+impl core::error::Error for GoldenError {}
 
 impl Golden {
     /// The golden at `path`, compared exactly. Updates when the environment

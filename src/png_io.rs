@@ -61,7 +61,7 @@ pub fn decode_png<R: std::io::BufRead + std::io::Seek>(
     let mut reader = decoder.read_info()?;
     let size = reader
         .output_buffer_size()
-        .ok_or_else(|| png::DecodingError::LimitsExceeded)?;
+        .ok_or(png::DecodingError::LimitsExceeded)?;
     let mut buf = std::vec![0; size];
     let info = reader.next_frame(&mut buf)?;
     let bytes = &buf[..info.buffer_size()];
