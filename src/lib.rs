@@ -41,7 +41,11 @@
 //! - `rayon` (default): the framebuffer's parallel pixel iterator, the
 //!   threaded render ([`render_parallel`], byte-identical to the scalar one)
 //!   and parallel storage builds; implies `std`.
-//! - `png` (default): PNG encoding of frames; implies `std`.
+//! - `png` (default): PNG encoding and decoding of frames, and the
+//!   [`Golden`] helper for golden-image tests; implies `std`.
+//! - `image`: conversions between frames and the image crate's `RgbaImage`
+//!   (`From<&Framebuffer>`, `TryFrom<&RgbaImage>`, `to_rgba_image`); the
+//!   image crate comes with no codecs (choose them in your own dependency).
 
 #![no_std]
 #![deny(missing_docs, unsafe_code)]
@@ -84,6 +88,8 @@ mod walk;
 
 #[cfg(feature = "png")]
 mod golden;
+#[cfg(feature = "image")]
+mod image_conv;
 #[cfg(feature = "png")]
 mod png_io;
 
@@ -105,6 +111,12 @@ pub use walk::max_steps;
 pub use framebuffer::Framebuffer;
 #[cfg(feature = "png")]
 pub use golden::{Golden, GoldenError, UPDATE_GOLDEN};
+/// Re-export of the image crate, whose `RgbaImage` frames convert to and
+/// from.
+#[cfg(feature = "image")]
+pub use image;
+#[cfg(feature = "image")]
+pub use image_conv::{from_rgba_image, to_rgba_image};
 #[cfg(feature = "rayon")]
 pub use par_pixels::{ParPixels, PixelRef, Pixels};
 #[cfg(feature = "png")]

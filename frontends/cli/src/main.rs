@@ -5,15 +5,15 @@
 //! problem.
 
 mod args;
+mod output;
 mod progress;
 
 use std::fs::File;
-use std::io::BufWriter;
 use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::Parser;
-use voxtrace::{encode_png, Camera, CameraSettings, Fog, Occlusion, Rect, RenderOptions};
+use voxtrace::{Camera, CameraSettings, Fog, Occlusion, Rect, RenderOptions};
 use voxtrace_cli::{on_threads, paper_position, BuiltScene};
 
 use args::Args;
@@ -82,10 +82,11 @@ fn run(args: &Args) -> Result<(), String> {
 
     explain_ignored(&render_options(args));
 
-    // Open the output first: a bad path fails now, not after the render.
+    // Check the output first: a bad path fails now, not after the render.
+    let format = output::format_of(&args.out)?;
     let file = File::create(&args.out)
         .map_err(|e| format!("cannot write --out {}: {e}", args.out.display()))?;
-    let result = render_to(args, seed, &camera, region, file);
+    let result = render_to(args, seed, &camera, region, file, format);
     if result.is_err() {
         let _ = std::fs::remove_file(&args.out);
     }
@@ -152,6 +153,7 @@ fn render_to(
     camera: &Camera,
     region: Rect,
     file: File,
+    format: output::Format,
 ) -> Result<(), String> {
     let threaded = args.threads != Some(1);
     let (built, build, rendered) = on_threads(args.threads, || {
@@ -166,13 +168,8 @@ fn render_to(
     })?;
 
     let encode_started = Instant::now();
-    encode_png(
-        BufWriter::new(file),
-        region.width,
-        region.height,
-        &rendered.pixels,
-    )
-    .map_err(|e| format!("cannot write --out {}: {e}", args.out.display()))?;
+    output::write(file, format, region.width, region.height, &rendered.pixels)
+        .map_err(|e| format!("cannot write --out {}: {e}", args.out.display()))?;
     let encode = encode_started.elapsed();
 
     if args.stats {

@@ -226,6 +226,7 @@ fn bad_input_exits_2_with_one_line_naming_the_value() {
         (&["--sun", "0,0,0"], "0,0,0"),
         (&["--sun", "up"], "up"),
         (&["--out", unwritable], unwritable),
+        (&["--out", "x.webp"], ".webp"),
         (
             &["--size", "4194304", "--backend", "dense"],
             "590295810358705651712 bytes",
@@ -327,4 +328,20 @@ fn shadows_without_a_sun_trace_nothing_and_say_so_once() {
         notes,
         ["note: --flat draws no effects: ignoring --ao, --spp"]
     );
+}
+
+/// With the `image` feature, `--out`'s extension picks the format, and
+/// every format carries the PNG's pixels.
+#[cfg(feature = "image")]
+#[test]
+fn other_formats_carry_the_pngs_pixels() {
+    let (_, _, png) = decode(&render("octree", &[], "same.png"));
+    for ext in ["bmp", "tga", "ppm"] {
+        let path = render("octree", &[], &format!("same.{ext}"));
+        let image = image::open(&path)
+            .unwrap_or_else(|e| panic!("{ext}: {e}"))
+            .to_rgba8();
+        assert_eq!(image.dimensions(), (320, 180), "{ext}");
+        assert!(image.as_raw() == &png, "{ext} pixels differ from the PNG's");
+    }
 }
