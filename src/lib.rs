@@ -43,6 +43,8 @@
 //!   and parallel storage builds; implies `std`.
 //! - `png` (default): PNG encoding and decoding of frames, and the
 //!   [`Golden`] helper for golden-image tests; implies `std`.
+//! - `vox`: MagicaVoxel `.vox` scenes as a [`VoxelSource`] (`VoxModel`),
+//!   parsed by dot_vox, placed through the scene graph; implies `std`.
 //! - `image`: conversions between frames and the image crate's `RgbaImage`
 //!   (`From<&Framebuffer>`, `TryFrom<&RgbaImage>`, `to_rgba_image`); the
 //!   image crate comes with no codecs (choose them in your own dependency).
@@ -83,6 +85,10 @@ mod shader;
 #[cfg(feature = "alloc")]
 mod storage;
 mod terrain;
+#[cfg(feature = "vox")]
+mod vox_model;
+#[cfg(feature = "vox")]
+mod vox_scene;
 mod voxel;
 mod walk;
 
@@ -106,6 +112,8 @@ pub use shade::{pack, shade, sky, unpack, FLAT_SKY, SKY_HORIZON, SKY_ZENITH};
 pub use terrain::{VoxelGenerator, GRASS, HEIGHT, MOUNTAIN, ROUGHNESS, SCALE, SNOW, WATER};
 pub use voxel::{FnSource, Palette, Region, Voxel, VoxelSource};
 pub use walk::max_steps;
+#[cfg(feature = "vox")]
+pub use {vox_model::VoxModel, vox_scene::VoxError};
 
 #[cfg(feature = "std")]
 pub use framebuffer::Framebuffer;

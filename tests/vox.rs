@@ -1,0 +1,287 @@
+//! MagicaVoxel scenes: files this test writes itself (with dot_vox's
+//! writer) load with every voxel present in its palette color, placed
+//! through the scene graph, into both storages identically; bad files are
+//! errors, never panics. Real models from `../shared/scenes/vox/` are used
+//! where that folder exists.
+#![cfg(feature = "vox")]
+
+use std::collections::BTreeSet;
+
+use dot_vox::{Color, DotVoxData, Model, SceneNode, ShapeModel, Size, Voxel};
+use voxtrace::glam::{IVec3, U8Vec3, Vec3};
+use voxtrace::{
+    render, Camera, CameraSettings, DenseScene, OctreeScene, RenderOptions, VoxModel, VoxelSource,
+};
+
+fn palette() -> Vec<Color> {
+    (0..256)
+        .map(|i| Color {
+            r: i as u8,
+            g: 255 - i as u8,
+            b: (i * 7) as u8,
+            a: 255,
+        })
+        .collect()
+}
+
+/// An L-shaped model of `size` 4x3x5 (x, y, z in MagicaVoxel's z-up axes),
+/// each voxel with its own palette index.
+fn l_model() -> Model {
+    let mut voxels = Vec::new();
+    for z in 0..5u8 {
+        voxels.push(Voxel {
+            x: 0,
+            y: 0,
+            z,
+            i: 10 + z,
+        });
+    }
+    for x in 1..4u8 {
+        voxels.push(Voxel {
+            x,
+            y: 0,
+            z: 0,
+            i: 20 + x,
+        });
+    }
+    voxels.push(Voxel {
+        x: 3,
+        y: 2,
+        z: 0,
+        i: 99,
+    });
+    Model {
+        size: Size { x: 4, y: 3, z: 5 },
+        voxels,
+    }
+}
+
+fn attrs(pairs: &[(&str, &str)]) -> dot_vox::Dict {
+    pairs
+        .iter()
+        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .collect()
+}
+
+/// Root transform -> group -> one transform + shape per instance.
+fn scene(models: Vec<Model>, instances: &[(u32, &str, &str)]) -> DotVoxData {
+    let mut scenes = vec![
+        SceneNode::Transform {
+            attributes: attrs(&[]),
+            frames: vec![dot_vox::Frame::new(attrs(&[]))],
+            child: 1,
+            layer_id: u32::MAX,
+        },
+        SceneNode::Group {
+            attributes: attrs(&[]),
+            children: (0..instances.len() as u32).map(|k| 2 + 2 * k).collect(),
+        },
+    ];
+    for (k, &(model, t, r)) in instances.iter().enumerate() {
+        let mut frame = vec![("_t", t)];
+        if !r.is_empty() {
+            frame.push(("_r", r));
+        }
+        scenes.push(SceneNode::Transform {
+            attributes: attrs(&[]),
+            frames: vec![dot_vox::Frame::new(attrs(&frame))],
+            child: 3 + 2 * k as u32,
+            layer_id: 0,
+        });
+        scenes.push(SceneNode::Shape {
+            attributes: attrs(&[]),
+            models: vec![ShapeModel {
+                model_id: model,
+                attributes: attrs(&[]),
+            }],
+        });
+    }
+    DotVoxData {
+        version: 150,
+        index_map: Vec::new(),
+        models,
+        palette: palette(),
+        materials: Vec::new(),
+        scenes,
+        layers: Vec::new(),
+    }
+}
+
+fn bytes(data: &DotVoxData) -> Vec<u8> {
+    let mut out = Vec::new();
+    data.write_vox(&mut out).unwrap();
+    out
+}
+
+/// Solid positions of `model` in its bounds, with materials.
+fn solids(model: &VoxModel) -> Vec<(IVec3, u8)> {
+    let b = model.bounds();
+    b.iter()
+        .filter_map(|p| {
+            let m = model.material(p);
+            (m != 0).then_some((p, m))
+        })
+        .collect()
+}
+
+#[test]
+fn every_voxel_of_the_file_is_present_in_its_color() {
+    let data = scene(vec![l_model()], &[(0, "0 0 0", "")]);
+    let model = VoxModel::from_bytes(&bytes(&data)).unwrap();
+    let found = solids(&model);
+    assert_eq!(found.len(), 9);
+    assert_eq!(model.voxel_count(), 9);
+    let materials: BTreeSet<u8> = found.iter().map(|&(_, m)| m).collect();
+    let expected: BTreeSet<u8> = l_model().voxels.iter().map(|v| v.i + 1).collect();
+    assert_eq!(materials, expected);
+    for (_, m) in found {
+        // dot_vox's index i is the file's index minus one: palette[i].
+        let c = palette()[usize::from(m - 1)];
+        assert_eq!(model.palette().color(m), U8Vec3::new(c.r, c.g, c.b));
+    }
+    // MagicaVoxel's z is up: the L's 5-voxel leg stands along y here.
+    assert_eq!(model.bounds().size(), IVec3::new(4, 5, 3));
+}
+
+/// Positions relative to their minimum corner, for comparing shapes.
+fn shape(points: impl Iterator<Item = IVec3>) -> BTreeSet<(i32, i32, i32)> {
+    let points: Vec<IVec3> = points.collect();
+    let lo = points.iter().fold(IVec3::MAX, |a, &p| a.min(p));
+    points.iter().map(|&p| (p - lo).into()).collect()
+}
+
+#[test]
+fn instances_land_where_their_transforms_put_them() {
+    // Two copies of the L, 20 voxels apart along MagicaVoxel's x, the second
+    // turned a quarter about the vertical axis (_r = 0b0010_0001: x -> -y).
+    let data = scene(vec![l_model()], &[(0, "0 0 0", ""), (0, "20 0 0", "33")]);
+    let model = VoxModel::from_bytes(&bytes(&data)).unwrap();
+    let found = solids(&model);
+    assert_eq!(found.len(), 18);
+    let (left, right): (Vec<_>, Vec<_>) = found.iter().partition(|(p, _)| p.x < 10);
+    assert_eq!((left.len(), right.len()), (9, 9));
+    // The second copy is the first turned a quarter about y (voxtrace's up):
+    // in y-up axes MagicaVoxel's x -> -y becomes x -> +z.
+    let turn = |p: IVec3| IVec3::new(-p.z, p.y, p.x);
+    let turned = shape(left.iter().map(|(p, _)| turn(*p)));
+    assert_eq!(turned, shape(right.iter().map(|(p, _)| *p)));
+    // The same voxels keep their materials through the turn.
+    let left_materials: BTreeSet<u8> = left.iter().map(|&(_, m)| m).collect();
+    let right_materials: BTreeSet<u8> = right.iter().map(|&(_, m)| m).collect();
+    assert_eq!(left_materials, right_materials);
+}
+
+#[test]
+fn both_storages_build_the_same_scene_from_a_model() {
+    let data = scene(
+        vec![l_model()],
+        &[(0, "0 0 0", ""), (0, "7 3 -2", "33"), (0, "-9 5 4", "70")],
+    );
+    let model = VoxModel::from_bytes(&bytes(&data)).unwrap();
+    let bounds = model.bounds();
+    let dense = DenseScene::build(&model, bounds).unwrap();
+    let octree = OctreeScene::build(&model, bounds).unwrap();
+    for p in bounds.iter() {
+        assert_eq!(dense.material(p), model.material(p));
+        assert_eq!(octree.material(p), model.material(p));
+    }
+    let camera = Camera::new(CameraSettings {
+        width: 64,
+        height: 48,
+        lookfrom: Vec3::new(14.0, 12.0, 17.0),
+        ..CameraSettings::default()
+    })
+    .unwrap();
+    let mut a = vec![0; 64 * 48];
+    let mut b = vec![0; 64 * 48];
+    let sa = render(&dense, &camera, &RenderOptions::default(), &mut a).unwrap();
+    render(&octree, &camera, &RenderOptions::default(), &mut b).unwrap();
+    assert!(sa.primary_hits > 50, "the camera sees the models");
+    assert!(a == b);
+}
+
+#[test]
+fn bad_files_are_errors_not_panics() {
+    let good = bytes(&scene(vec![l_model()], &[(0, "0 0 0", "")]));
+    for len in 0..good.len() {
+        let _ = VoxModel::from_bytes(&good[..len]); // an error or a smaller scene
+    }
+    let mut wrong_magic = good.clone();
+    wrong_magic[0] = b'X';
+    assert!(VoxModel::from_bytes(&wrong_magic).is_err());
+
+    let absurd = Model {
+        size: Size {
+            x: 100_000,
+            y: 1,
+            z: 1,
+        },
+        voxels: vec![Voxel {
+            x: 0,
+            y: 0,
+            z: 0,
+            i: 1,
+        }],
+    };
+    let err = VoxModel::from_bytes(&bytes(&scene(vec![absurd], &[(0, "0 0 0", "")])));
+    assert!(err.unwrap_err().to_string().contains("100000x1x1"));
+
+    let outside = Model {
+        size: Size { x: 2, y: 2, z: 2 },
+        voxels: vec![Voxel {
+            x: 5,
+            y: 0,
+            z: 0,
+            i: 1,
+        }],
+    };
+    let err = VoxModel::from_bytes(&bytes(&scene(vec![outside], &[(0, "0 0 0", "")])));
+    assert!(err.unwrap_err().to_string().contains("outside its size"));
+
+    let mut short_palette = scene(vec![l_model()], &[(0, "0 0 0", "")]);
+    short_palette.palette.truncate(16);
+    let err = VoxModel::from_bytes(&bytes(&short_palette)).unwrap_err();
+    assert!(err.to_string().contains("palette index"), "{err}");
+
+    for (t, r) in [("1 2", ""), ("0 0 0", "3"), ("0 0 99999999", "")] {
+        let err = VoxModel::from_bytes(&bytes(&scene(vec![l_model()], &[(0, t, r)])));
+        assert!(err.is_err(), "_t {t:?} _r {r:?}");
+    }
+    let mut missing_model = scene(vec![l_model()], &[(0, "0 0 0", "")]);
+    missing_model.scenes[3] = SceneNode::Shape {
+        attributes: attrs(&[]),
+        models: vec![ShapeModel {
+            model_id: 7,
+            attributes: attrs(&[]),
+        }],
+    };
+    assert!(VoxModel::from_bytes(&bytes(&missing_model)).is_err());
+}
+
+#[test]
+fn shared_models_load_into_both_storages_identically() {
+    let dir = std::path::Path::new("../shared/scenes/vox");
+    if !dir.is_dir() {
+        println!("skipped: {} is absent (third-party models)", dir.display());
+        return;
+    }
+    for name in [
+        "chr_riotcop.vox",
+        "test_multiple_model_scene.vox",
+        "H1-COLORED.vox",
+    ] {
+        let model = VoxModel::load(&dir.join(name)).unwrap();
+        let bounds = model.bounds();
+        let dense = DenseScene::build(&model, bounds).unwrap();
+        let octree = OctreeScene::build(&model, bounds).unwrap();
+        let mut count = 0;
+        for p in bounds.iter() {
+            let m = model.material(p);
+            count += usize::from(m != 0);
+            assert_eq!(octree.material(p), m, "{name} at {p}");
+            assert_eq!(dense.material(p), m, "{name} at {p}");
+        }
+        assert_eq!(count, model.voxel_count(), "{name}");
+        assert!(count > 100, "{name}");
+    }
+}
