@@ -78,24 +78,18 @@ impl VoxModel {
             // the pivot; `>> 1` floors back to the voxel holding it.
             ((p.rotation * (2 * (v - pivot) + 1)) >> 1) + p.translation
         };
-        // The bounds, from each instance's eight corner voxels.
+        // The tight bounds of the placed voxels.
         let mut lo = IVec3::MAX;
         let mut hi = IVec3::MIN;
         for p in &placed {
-            let s = data.models[p.model].size;
-            let last = IVec3::new(s.x as i32 - 1, s.y as i32 - 1, s.z as i32 - 1);
-            for corner in 0..8 {
-                let c = IVec3::new(
-                    if corner & 1 == 0 { 0 } else { last.x },
-                    if corner & 2 == 0 { 0 } else { last.y },
-                    if corner & 4 == 0 { 0 } else { last.z },
-                );
-                let w = world(p, c);
+            for v in &data.models[p.model].voxels {
+                let w = world(p, IVec3::new(i32::from(v.x), i32::from(v.y), i32::from(v.z)));
                 lo = lo.min(w);
                 hi = hi.max(w);
             }
         }
-        if placed.is_empty() {
+        if lo.x > hi.x {
+            // No voxel at all: one empty cell at the origin.
             (lo, hi) = (IVec3::ZERO, IVec3::ZERO);
         }
         let bounds = IAabb {

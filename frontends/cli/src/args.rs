@@ -15,17 +15,24 @@ pub struct Args {
     #[arg(long, value_enum, default_value_t = Backend::Octree)]
     pub backend: Backend,
 
+    /// Render this MagicaVoxel .vox scene instead of the terrain (--size and
+    /// --seed are then unused).
+    #[arg(long, value_name = "FILE")]
+    pub vox: Option<PathBuf>,
+
     /// Scene extent N: the volume is [-N, N)^3.
     #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(i32).range(1..=voxtrace::MAX_COORD as i64))]
     pub size: i32,
 
-    /// Camera position X,Y,Z [default: N-10,N-10,N-10].
+    /// Camera position X,Y,Z [default: N-10,N-10,N-10; with --vox, a
+    /// three-quarter view that frames the model].
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub position: Option<Vec3>,
 
-    /// Point the camera looks at, X,Y,Z.
-    #[arg(long, value_parser = parse_vec3, default_value = "0,0,0", allow_hyphen_values = true)]
-    pub lookat: Vec3,
+    /// Point the camera looks at, X,Y,Z [default: 0,0,0; with --vox, the
+    /// model's center].
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub lookat: Option<Vec3>,
 
     /// Vertical field of view in degrees, in (0, 180).
     #[arg(long, default_value_t = voxtrace::DEFAULT_FOV)]

@@ -6,4 +6,6 @@
 
 mod pipeline;
 
-pub use pipeline::{above_position, on_threads, paper_position, Backend, BuiltScene, Rendered};
+pub use pipeline::{
+    above_position, framing, on_threads, paper_position, Backend, BuiltScene, Rendered,
+};

@@ -13,8 +13,11 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::Parser;
-use voxtrace::{Camera, CameraSettings, Fog, Occlusion, Rect, RenderOptions};
-use voxtrace_cli::{on_threads, paper_position, BuiltScene};
+use voxtrace::glam::Vec3;
+use voxtrace::{
+    Camera, CameraSettings, Fog, IAabb, Occlusion, Rect, RenderOptions, VoxModel, VoxelGenerator,
+};
+use voxtrace_cli::{framing, on_threads, paper_position, BuiltScene};
 
 use args::Args;
 use progress::Progress;
@@ -56,19 +59,50 @@ fn random_seed() -> u64 {
     mix.next_u64() >> 1 // keep it readable as a positive i64 too
 }
 
+/// What the CLI renders.
+enum Subject {
+    /// The seeded terrain.
+    Terrain { seed: u64 },
+    /// A loaded `.vox` scene.
+    Model(VoxModel),
+}
+
 fn run(args: &Args) -> Result<(), String> {
-    let seed = args.seed.unwrap_or_else(|| {
-        let seed = random_seed();
-        eprintln!("seed: {seed}");
-        seed
-    });
-    let position = args.position.unwrap_or(paper_position(args.size));
+    let subject = match &args.vox {
+        Some(path) => Subject::Model(
+            VoxModel::load(path)
+                .map_err(|e| format!("cannot load --vox {}: {e}", path.display()))?,
+        ),
+        None => Subject::Terrain {
+            seed: args.seed.unwrap_or_else(|| {
+                let seed = random_seed();
+                eprintln!("seed: {seed}");
+                seed
+            }),
+        },
+    };
+    let (bounds, position, lookat) = match &subject {
+        Subject::Terrain { .. } => (
+            IAabb::centered(args.size),
+            args.position.unwrap_or(paper_position(args.size)),
+            args.lookat.unwrap_or(Vec3::ZERO),
+        ),
+        Subject::Model(model) => {
+            let aspect = args.width as f32 / args.height as f32;
+            let (eye, center) = framing(model.bounds(), args.fov, aspect);
+            (
+                model.bounds(),
+                args.position.unwrap_or(eye),
+                args.lookat.unwrap_or(center),
+            )
+        }
+    };
     let camera = Camera::new(CameraSettings {
         width: args.width,
         height: args.height,
         vertical_fov: args.fov,
         lookfrom: position,
-        lookat: args.lookat,
+        lookat,
         ..CameraSettings::default()
     })
     .map_err(|e| e.to_string())?;
@@ -80,21 +114,22 @@ fn run(args: &Args) -> Result<(), String> {
         )
     })?;
 
-    explain_ignored(&render_options(args));
+    let options = render_options(args, bounds);
+    explain_ignored(&options);
 
     // Check the output first: a bad path fails now, not after the render.
     let format = output::format_of(&args.out)?;
     let file = File::create(&args.out)
         .map_err(|e| format!("cannot write --out {}: {e}", args.out.display()))?;
-    let result = render_to(args, seed, &camera, region, file, format);
+    let result = render_to(args, &subject, bounds, &options, &camera, region, file, format);
     if result.is_err() {
         let _ = std::fs::remove_file(&args.out);
     }
     result
 }
 
-/// The effects the flags ask for.
-fn render_options(args: &Args) -> RenderOptions {
+/// The effects the flags ask for; fog thickens over the scene's scale.
+fn render_options(args: &Args, bounds: IAabb) -> RenderOptions {
     RenderOptions {
         flat: args.flat,
         debug: args.debug,
@@ -106,7 +141,8 @@ fn render_options(args: &Args) -> RenderOptions {
         }),
         samples: args.spp,
         fog: args.fog.then_some(Fog {
-            distance: 3.0 * args.size as f32,
+            // 3 x --size for the terrain: one and a half times the volume's side.
+            distance: 1.5 * bounds.size().max_element() as f32,
         }),
     }
 }
@@ -147,9 +183,12 @@ fn explain_ignored(asked: &RenderOptions) {
 
 /// Builds the scene and renders it with the thread count of `--threads`,
 /// then writes the PNG and, with `--stats`, the figures.
+#[allow(clippy::too_many_arguments)] // one call site; a struct would only rename them
 fn render_to(
     args: &Args,
-    seed: u64,
+    subject: &Subject,
+    bounds: IAabb,
+    options: &RenderOptions,
     camera: &Camera,
     region: Rect,
     file: File,
@@ -157,10 +196,15 @@ fn render_to(
 ) -> Result<(), String> {
     let threaded = args.threads != Some(1);
     let (built, build, rendered) = on_threads(args.threads, || {
-        let (built, build) = BuiltScene::build(args.backend, args.size, seed, threaded)?;
-        let options = render_options(args);
+        let (built, build) = match subject {
+            Subject::Terrain { seed } => {
+                let terrain = VoxelGenerator::new(*seed);
+                BuiltScene::build_from(args.backend, &terrain, bounds, threaded)?
+            }
+            Subject::Model(model) => BuiltScene::build_from(args.backend, model, bounds, threaded)?,
+        };
         let progress = Progress::rows(region.height);
-        let rendered = built.render(camera, region, &options, threaded, &|rows| {
+        let rendered = built.render(camera, region, options, threaded, &|rows| {
             progress.advance(rows);
         });
         progress.finish();

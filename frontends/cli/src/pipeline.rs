@@ -12,7 +12,7 @@ use voxtrace::glam::Vec3;
 use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{
     render_parallel_with_progress, render_span, Camera, DenseScene, Error, Framebuffer, IAabb,
-    Node, OctreeScene, RayStats, Rect, RenderOptions, Scene, VoxelGenerator,
+    Node, OctreeScene, RayStats, Rect, RenderOptions, Scene, VoxelGenerator, VoxelSource,
 };
 
 /// Which storage holds the voxels.
@@ -91,28 +91,42 @@ impl BuiltScene {
         threaded: bool,
     ) -> Result<(BuiltScene, Duration), String> {
         let terrain = VoxelGenerator::new(seed);
-        let bounds = IAabb::centered(size);
+        BuiltScene::build_from(backend, &terrain, IAabb::centered(size), threaded)
+    }
+
+    /// Builds `backend` from any voxel source over `bounds`, in parallel
+    /// unless `threaded` is false; returns the scene and the build's wall
+    /// time.
+    ///
+    /// # Errors
+    /// A one-line message; for a dense array that cannot be allocated it
+    /// names the bytes it needs.
+    pub fn build_from<S: VoxelSource + Sync + ?Sized>(
+        backend: Backend,
+        source: &S,
+        bounds: IAabb,
+        threaded: bool,
+    ) -> Result<(BuiltScene, Duration), String> {
         let started = Instant::now();
-        let describe = |e: Error| {
-            format!(
-                "cannot build the {} scene of size {size}: {e}",
-                backend.name()
-            )
-        };
+        let describe = |e: Error| format!("cannot build the {} scene: {e}", backend.name());
         let scene = match backend {
             Backend::Dense => {
                 let built = if threaded {
-                    DenseScene::build_parallel(&terrain, bounds)
+                    DenseScene::build_parallel(source, bounds)
                 } else {
-                    DenseScene::build(&terrain, bounds)
+                    DenseScene::build(source, bounds)
                 };
                 BuiltScene::Dense(built.map_err(|e| match e {
                     Error::OutOfMemory { .. } | Error::SizeOverflow => {
                         // Exact even when it overflows usize: one byte per voxel.
-                        let bytes = (2 * u128::from(size.unsigned_abs())).pow(3);
+                        let size = bounds.size();
+                        let bytes: u128 = [size.x, size.y, size.z]
+                            .iter()
+                            .map(|&s| u128::from(s.unsigned_abs()))
+                            .product();
                         format!(
-                            "the dense array for --size {size} needs {bytes} bytes (one per \
-                             voxel), more than can be allocated; try --backend octree"
+                            "the dense array for this scene needs {bytes} bytes (one per voxel), \
+                             more than can be allocated; try --backend octree"
                         )
                     }
                     e => describe(e),
@@ -120,9 +134,9 @@ impl BuiltScene {
             }
             Backend::Octree => {
                 let built = if threaded {
-                    OctreeScene::build_parallel(&terrain, bounds)
+                    OctreeScene::build_parallel(source, bounds)
                 } else {
-                    OctreeScene::build(&terrain, bounds)
+                    OctreeScene::build(source, bounds)
                 };
                 BuiltScene::Octree(built.map_err(describe)?)
             }
@@ -219,4 +233,20 @@ pub fn paper_position(size: i32) -> Vec3 {
 pub fn above_position(size: i32) -> Vec3 {
     let n = size as f32;
     Vec3::new(0.6 * n, n + 120.0, 1.2 * n)
+}
+
+/// A camera position and target that frame `bounds` from a three-quarter
+/// view above: the box's bounding sphere fits the field of view (vertical
+/// `vertical_fov` degrees, width over height `aspect`) with a margin.
+#[must_use]
+pub fn framing(bounds: IAabb, vertical_fov: f32, aspect: f32) -> (Vec3, Vec3) {
+    let (min, max) = (bounds.min.as_vec3(), bounds.max.as_vec3());
+    let center = (min + max) * 0.5;
+    let radius = (max - min).length() * 0.5;
+    let half_v = (vertical_fov * 0.5).to_radians();
+    let half_h = (half_v.tan() * aspect).atan();
+    let half = half_v.min(half_h);
+    let distance = 1.08 * radius / half.sin();
+    let direction = Vec3::new(-1.0, 0.8, -1.3).normalize();
+    (center + direction * distance, center)
 }

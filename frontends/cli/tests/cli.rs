@@ -227,6 +227,7 @@ fn bad_input_exits_2_with_one_line_naming_the_value() {
         (&["--sun", "up"], "up"),
         (&["--out", unwritable], unwritable),
         (&["--out", "x.webp"], ".webp"),
+        (&["--vox", "/nonexistent.vox"], "/nonexistent.vox"),
         (
             &["--size", "4194304", "--backend", "dense"],
             "590295810358705651712 bytes",
@@ -343,5 +344,112 @@ fn other_formats_carry_the_pngs_pixels() {
             .to_rgba8();
         assert_eq!(image.dimensions(), (320, 180), "{ext}");
         assert!(image.as_raw() == &png, "{ext} pixels differ from the PNG's");
+    }
+}
+
+/// A small two-instance scene written with dot_vox's own writer.
+fn write_vox(name: &str) -> PathBuf {
+    use dot_vox::{Color, DotVoxData, Frame, Model, SceneNode, ShapeModel, Size, Voxel};
+    let dict = |pairs: &[(&str, &str)]| -> dot_vox::Dict {
+        pairs.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect()
+    };
+    let voxels = (0..6u8)
+        .flat_map(|x| (0..4u8).map(move |z| Voxel { x, y: x % 3, z, i: 1 + x * 4 + z }))
+        .collect();
+    let mut scenes = vec![
+        SceneNode::Transform {
+            attributes: dict(&[]),
+            frames: vec![Frame::new(dict(&[]))],
+            child: 1,
+            layer_id: 0,
+        },
+        SceneNode::Group {
+            attributes: dict(&[]),
+            children: vec![2, 4],
+        },
+    ];
+    for (t, r) in [("0 0 0", "4"), ("8 -3 2", "33")] {
+        scenes.push(SceneNode::Transform {
+            attributes: dict(&[]),
+            frames: vec![Frame::new(dict(&[("_t", t), ("_r", r)]))],
+            child: scenes.len() as u32 + 1,
+            layer_id: 0,
+        });
+        scenes.push(SceneNode::Shape {
+            attributes: dict(&[]),
+            models: vec![ShapeModel {
+                model_id: 0,
+                attributes: dict(&[]),
+            }],
+        });
+    }
+    let data = DotVoxData {
+        version: 150,
+        index_map: Vec::new(),
+        models: vec![Model {
+            size: Size { x: 6, y: 3, z: 4 },
+            voxels,
+        }],
+        palette: (0..=255u8)
+            .map(|i| Color { r: i, g: 200 - i / 2, b: 90, a: 255 })
+            .collect(),
+        materials: Vec::new(),
+        scenes,
+        layers: Vec::new(),
+    };
+    let path = scratch(name);
+    let mut file = std::fs::File::create(&path).unwrap();
+    data.write_vox(&mut file).unwrap();
+    path
+}
+
+#[test]
+fn vox_scenes_render_identically_with_both_backends() {
+    let vox = write_vox("two.vox");
+    let mut files = vec![(vox.clone(), "two")];
+    let shared = Path::new("../../../shared/scenes/vox/study.vox");
+    if shared.exists() {
+        files.push((shared.to_path_buf(), "study"));
+    } else {
+        println!("skipped study.vox: {} is absent (third-party models)", shared.display());
+    }
+    for (path, name) in files {
+        let path = path.to_str().unwrap();
+        let a = render("dense", &["--vox", path], &format!("{name}-dense.png"));
+        let b = render("octree", &["--vox", path], &format!("{name}-octree.png"));
+        let (_, _, pixels) = decode(&a);
+        assert!(std::fs::read(&a).unwrap() == std::fs::read(&b).unwrap(), "{name}");
+        // The automatic framing puts the model in view: not all sky.
+        let first = &pixels[..4];
+        assert!(pixels.chunks(4).any(|p| p != first), "{name}: nothing in view");
+    }
+}
+
+#[test]
+fn bad_vox_files_exit_2_with_one_line() {
+    let out = scratch("bad-vox.png");
+    let good = std::fs::read(write_vox("good.vox")).unwrap();
+    let cases: [(&str, Vec<u8>); 3] = [
+        ("garbage.vox", b"this is not a vox file".to_vec()),
+        ("truncated.vox", good[..good.len() / 2].to_vec()),
+        ("magic.vox", [b"XOV ".as_slice(), &good[4..]].concat()),
+    ];
+    for (name, bytes) in cases {
+        let path = scratch(name);
+        std::fs::write(&path, bytes).unwrap();
+        let result = voxtrace(&[
+            "--vox",
+            path.to_str().unwrap(),
+            "--width",
+            "16",
+            "--height",
+            "9",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert_eq!(result.status.code(), Some(2), "{name}: {stderr}");
+        assert_eq!(stderr.trim_end().lines().count(), 1, "{name}: {stderr}");
+        assert!(stderr.contains("cannot load --vox"), "{name}: {stderr}");
     }
 }
