@@ -1,8 +1,9 @@
 //! `VoxModel`: a loaded `.vox` scene as a [`VoxelSource`] (feature `vox`).
-//! The placed voxels are baked into one byte grid over the scene's bounds,
-//! with a summed-volume table of 4^3 blocks so that builders learn in O(1)
-//! that a box is empty.
+//! The placed voxels are kept in 8^3 chunks, only where voxels are, so
+//! memory follows the voxel count however far apart the instances stand;
+//! a box that meets no chunk is known empty without looking inside.
 
+use std::collections::HashMap;
 use std::format;
 use std::vec::Vec;
 
@@ -12,11 +13,14 @@ use crate::geom::{IAabb, MAX_COORD};
 use crate::vox_scene::{placements, Placement, VoxError};
 use crate::voxel::{Palette, Region, VoxelSource};
 
-/// The largest scene baked: 2^31 voxels (2 GiB of grid).
-const MAX_VOXELS: u64 = 1 << 31;
+/// The most voxels a scene may place (instances count each time): 2^28,
+/// a quarter of a gigabyte of chunks at worst.
+const MAX_PLACED: u64 = 1 << 28;
 
-/// Side of the blocks the emptiness table counts.
-const BLOCK: i32 = 4;
+/// Chunk side, as a shift: 8 voxels.
+const CHUNK_LOG: i32 = 3;
+const CHUNK: i32 = 1 << CHUNK_LOG;
+const CHUNK_VOXELS: usize = (CHUNK * CHUNK * CHUNK) as usize;
 
 /// A MagicaVoxel scene: every model of the file where MagicaVoxel shows it,
 /// in voxtrace's axes (y up; MagicaVoxel's z becomes y).
@@ -25,17 +29,22 @@ const BLOCK: i32 = 4;
 /// `bounds()` is the tight box of the solid voxels (one empty voxel for a
 /// file without any). Material `m` is MagicaVoxel's palette index `m`, with
 /// the file's color. A later instance overwrites an earlier one where they
-/// overlap.
+/// overlap. Memory is proportional to the voxels placed, never to the
+/// volume of the bounds.
 #[derive(Clone, Debug)]
 pub struct VoxModel {
     bounds: IAabb,
-    cells: Vec<u8>,
     palette: Palette,
-    /// Solid voxels in blocks `[0, b)` on every axis: `(bx+1)(by+1)(bz+1)`
-    /// entries, zero on the low faces.
-    counts: Vec<u32>,
-    blocks: IVec3,
+    /// Chunk coordinates (position >> 3) to an index into `chunks`.
+    index: HashMap<IVec3, u32>,
+    chunks: Vec<[u8; CHUNK_VOXELS]>,
     voxels: usize,
+}
+
+/// Offset of `pos` inside its chunk.
+fn in_chunk(pos: IVec3) -> usize {
+    let l = pos & (CHUNK - 1);
+    (l.x | l.y << CHUNK_LOG | l.z << (2 * CHUNK_LOG)) as usize
 }
 
 impl VoxModel {
@@ -45,7 +54,7 @@ impl VoxModel {
         VoxModel::from_bytes(&bytes)
     }
 
-    /// Places the `.vox` file in `bytes`. Sizes are checked before anything
+    /// Places the `.vox` file in `bytes`. Counts are checked before anything
     /// is allocated for them: a bad file is an error, never a huge
     /// allocation or a panic.
     pub fn from_bytes(bytes: &[u8]) -> Result<VoxModel, VoxError> {
@@ -71,69 +80,73 @@ impl VoxModel {
                 )));
             }
         }
-        let world = |p: &Placement, v: IVec3| {
+        let total: u64 = placed
+            .iter()
+            .map(|p| data.models[p.model].voxels.len() as u64)
+            .sum();
+        if total > MAX_PLACED {
+            return Err(VoxError::TooLarge(format!(
+                "its instances place {total} voxels, more than {MAX_PLACED}"
+            )));
+        }
+        let world = |p: &Placement, v: &dot_vox::Voxel| {
             let s = data.models[p.model].size;
             let pivot = IVec3::new((s.x / 2) as i32, (s.y / 2) as i32, (s.z / 2) as i32);
+            let local = IVec3::new(i32::from(v.x), i32::from(v.y), i32::from(v.z));
             // The voxel's center, doubled to stay integral, rotated about
             // the pivot; `>> 1` floors back to the voxel holding it.
-            ((p.rotation * (2 * (v - pivot) + 1)) >> 1) + p.translation
+            ((p.rotation * (2 * (local - pivot) + 1)) >> 1) + p.translation
         };
-        // The tight bounds of the placed voxels.
-        let mut lo = IVec3::MAX;
-        let mut hi = IVec3::MIN;
-        for p in &placed {
-            for v in &data.models[p.model].voxels {
-                let w = world(p, IVec3::new(i32::from(v.x), i32::from(v.y), i32::from(v.z)));
-                lo = lo.min(w);
-                hi = hi.max(w);
-            }
-        }
-        if lo.x > hi.x {
-            // No voxel at all: one empty cell at the origin.
-            (lo, hi) = (IVec3::ZERO, IVec3::ZERO);
-        }
-        let bounds = IAabb {
-            min: lo,
-            max: hi + 1,
-        };
-        if lo.min_element() < -MAX_COORD || hi.max_element() >= MAX_COORD {
-            return Err(VoxError::TooLarge(format!(
-                "it spans {lo} to {hi}, beyond +-{MAX_COORD}"
-            )));
-        }
-        let size = bounds.size().as_uvec3();
-        let volume = u64::from(size.x) * u64::from(size.y) * u64::from(size.z);
-        if volume > MAX_VOXELS {
-            return Err(VoxError::TooLarge(format!(
-                "{}x{}x{} = {volume} voxels, more than {MAX_VOXELS}",
-                size.x, size.y, size.z
-            )));
-        }
-        let mut cells = Vec::new();
-        cells
-            .try_reserve_exact(volume as usize)
-            .map_err(|_| VoxError::TooLarge(format!("{volume} bytes cannot be allocated")))?;
-        cells.resize(volume as usize, 0);
-        let index = |p: IVec3| {
-            let d = (p - lo).as_uvec3();
-            d.x as usize + size.x as usize * (d.y as usize + size.y as usize * d.z as usize)
-        };
-        for p in &placed {
-            for v in &data.models[p.model].voxels {
-                let local = IVec3::new(i32::from(v.x), i32::from(v.y), i32::from(v.z));
-                cells[index(world(p, local))] = v.i + 1;
-            }
-        }
-        let voxels = cells.iter().filter(|&&m| m != 0).count();
-        let (counts, blocks) = block_counts(&cells, bounds);
-        Ok(VoxModel {
-            bounds,
-            cells,
+        let mut model = VoxModel {
+            bounds: IAabb {
+                min: IVec3::MAX,
+                max: IVec3::MIN,
+            },
             palette: Palette::new(&colors),
-            counts,
-            blocks,
-            voxels,
-        })
+            index: HashMap::new(),
+            chunks: Vec::new(),
+            voxels: 0,
+        };
+        for p in &placed {
+            for v in &data.models[p.model].voxels {
+                model.place(world(p, v), v.i + 1)?;
+            }
+        }
+        if model.voxels == 0 {
+            model.bounds = IAabb {
+                min: IVec3::ZERO,
+                max: IVec3::ONE,
+            };
+        }
+        Ok(model)
+    }
+
+    /// Sets the voxel at `pos` to `material`, growing the bounds.
+    fn place(&mut self, pos: IVec3, material: u8) -> Result<(), VoxError> {
+        if pos.abs().max_element() >= MAX_COORD {
+            return Err(VoxError::TooLarge(format!(
+                "a voxel lands at {pos}, beyond +-{MAX_COORD}"
+            )));
+        }
+        let key = pos >> CHUNK_LOG;
+        let slot = match self.index.get(&key) {
+            Some(&i) => i as usize,
+            None => {
+                self.chunks
+                    .try_reserve(1)
+                    .map_err(|_| VoxError::TooLarge("its chunks cannot be allocated".into()))?;
+                self.chunks.push([0; CHUNK_VOXELS]);
+                let i = self.chunks.len() - 1;
+                self.index.insert(key, i as u32);
+                i
+            }
+        };
+        let cell = &mut self.chunks[slot][in_chunk(pos)];
+        self.voxels += usize::from(*cell == 0);
+        *cell = material;
+        self.bounds.min = self.bounds.min.min(pos);
+        self.bounds.max = self.bounds.max.max(pos + 1);
+        Ok(())
     }
 
     /// The tight box around the scene's voxels.
@@ -148,69 +161,11 @@ impl VoxModel {
         self.voxels
     }
 
-    fn index(&self, p: IVec3) -> usize {
-        let d = (p - self.bounds.min).as_uvec3();
-        let s = self.bounds.size().as_uvec3();
-        d.x as usize + s.x as usize * (d.y as usize + s.y as usize * d.z as usize)
+    /// The chunk holding `pos`, if any voxel is in it.
+    fn chunk(&self, pos: IVec3) -> Option<&[u8; CHUNK_VOXELS]> {
+        let i = *self.index.get(&(pos >> CHUNK_LOG))?;
+        self.chunks.get(i as usize)
     }
-
-    /// Solid voxels in the blocks `[lo, hi)`, by inclusion-exclusion over
-    /// the summed-volume table. Partial sums may dip below zero; wrapping
-    /// arithmetic is exact for the final, non-negative count.
-    fn blocks_sum(&self, lo: IVec3, hi: IVec3) -> u32 {
-        let b = self.blocks + 1;
-        let at = |x: i32, y: i32, z: i32| self.counts[(x + b.x * (y + b.y * z)) as usize];
-        at(hi.x, hi.y, hi.z)
-            .wrapping_sub(at(lo.x, hi.y, hi.z))
-            .wrapping_sub(at(hi.x, lo.y, hi.z))
-            .wrapping_sub(at(hi.x, hi.y, lo.z))
-            .wrapping_add(at(lo.x, lo.y, hi.z))
-            .wrapping_add(at(lo.x, hi.y, lo.z))
-            .wrapping_add(at(hi.x, lo.y, lo.z))
-            .wrapping_sub(at(lo.x, lo.y, lo.z))
-    }
-}
-
-/// The summed-volume table of solid voxels per `BLOCK^3` block.
-fn block_counts(cells: &[u8], bounds: IAabb) -> (Vec<u32>, IVec3) {
-    let size = bounds.size();
-    let blocks = (size + BLOCK - 1) / BLOCK;
-    let b = blocks + 1;
-    let mut counts = std::vec![0u32; (b.x * b.y * b.z) as usize];
-    let at = |x: i32, y: i32, z: i32| (x + b.x * (y + b.y * z)) as usize;
-    for z in 0..size.z {
-        for y in 0..size.y {
-            for x in 0..size.x {
-                let i = (x + size.x * (y + size.y * z)) as usize;
-                if cells[i] != 0 {
-                    counts[at(x / BLOCK + 1, y / BLOCK + 1, z / BLOCK + 1)] += 1;
-                }
-            }
-        }
-    }
-    // Prefix sums along each axis in turn.
-    for z in 0..b.z {
-        for y in 0..b.y {
-            for x in 1..b.x {
-                counts[at(x, y, z)] += counts[at(x - 1, y, z)];
-            }
-        }
-    }
-    for z in 0..b.z {
-        for y in 1..b.y {
-            for x in 0..b.x {
-                counts[at(x, y, z)] += counts[at(x, y - 1, z)];
-            }
-        }
-    }
-    for z in 1..b.z {
-        for y in 0..b.y {
-            for x in 0..b.x {
-                counts[at(x, y, z)] += counts[at(x, y, z - 1)];
-            }
-        }
-    }
-    (counts, blocks)
 }
 
 impl VoxelSource for VoxModel {
@@ -219,55 +174,70 @@ impl VoxelSource for VoxModel {
     }
 
     fn material(&self, pos: IVec3) -> u8 {
-        if self.bounds.contains(pos) {
-            self.cells[self.index(pos)]
-        } else {
-            0
-        }
+        self.chunk(pos).map_or(0, |c| c[in_chunk(pos)])
     }
 
-    /// Copies rows of the grid; zero outside the bounds.
+    /// Zero, then the voxels of every chunk that meets the region.
     fn fill_box(&self, region: IAabb, out: &mut [u8]) {
-        let size = region.size();
         if region.is_empty() {
             return;
         }
-        let inside = region.intersect(&self.bounds);
+        let size = region.size();
         let (sx, sy) = (size.x as usize, size.y as usize);
+        let len = (sx * sy * size.z as usize).min(out.len());
+        out[..len].fill(0);
+        if self.classify(region) == Region::Empty {
+            return;
+        }
         for (zi, z) in (region.min.z..region.max.z).enumerate() {
             for (yi, y) in (region.min.y..region.max.y).enumerate() {
                 let row = sx * (yi + sy * zi);
-                let Some(out_row) = out.get_mut(row..row + sx) else {
-                    return;
-                };
-                out_row.fill(0);
-                let covered = inside.min.y <= y
-                    && y < inside.max.y
-                    && inside.min.z <= z
-                    && z < inside.max.z
-                    && inside.min.x < inside.max.x;
-                if covered {
-                    let from = self.index(IVec3::new(inside.min.x, y, z));
-                    let len = (inside.max.x - inside.min.x) as usize;
-                    let at = (inside.min.x - region.min.x) as usize;
-                    out_row[at..at + len].copy_from_slice(&self.cells[from..from + len]);
+                // One chunk lookup per run of up to 8 voxels of the row.
+                let mut x = region.min.x;
+                while x < region.max.x {
+                    let run_end = ((x >> CHUNK_LOG) + 1) << CHUNK_LOG;
+                    let end = run_end.min(region.max.x);
+                    if let Some(chunk) = self.chunk(IVec3::new(x, y, z)) {
+                        for xx in x..end {
+                            let i = row + (xx - region.min.x) as usize;
+                            if let Some(slot) = out.get_mut(i) {
+                                *slot = chunk[in_chunk(IVec3::new(xx, y, z))];
+                            }
+                        }
+                    }
+                    x = end;
                 }
             }
         }
     }
 
-    /// Empty when the blocks covering the region hold no voxel.
+    /// Empty when no chunk with voxels meets the region: by looking up the
+    /// region's chunks or by scanning the chunks, whichever is fewer.
     fn classify(&self, region: IAabb) -> Region {
         let inside = region.intersect(&self.bounds);
         if inside.is_empty() {
             return Region::Empty;
         }
-        let lo = (inside.min - self.bounds.min) / BLOCK;
-        let hi = (inside.max - self.bounds.min + BLOCK - 1) / BLOCK;
-        if self.blocks_sum(lo, hi) == 0 {
-            Region::Empty
+        let lo = inside.min >> CHUNK_LOG;
+        let hi = (inside.max - 1) >> CHUNK_LOG;
+        let span = (hi - lo + 1).as_uvec3();
+        let region_chunks = u64::from(span.x) * u64::from(span.y) * u64::from(span.z);
+        let occupied = if region_chunks <= self.index.len() as u64 {
+            IAabb {
+                min: lo,
+                max: hi + 1,
+            }
+            .iter()
+            .any(|key| self.index.contains_key(&key))
         } else {
+            self.index
+                .keys()
+                .any(|k| k.cmpge(lo).all() && k.cmple(hi).all())
+        };
+        if occupied {
             Region::Mixed
+        } else {
+            Region::Empty
         }
     }
 }

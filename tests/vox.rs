@@ -285,3 +285,42 @@ fn shared_models_load_into_both_storages_identically() {
         assert!(count > 100, "{name}");
     }
 }
+
+#[test]
+fn boxes_read_from_chunks_equal_voxel_by_voxel_reads() {
+    // Instances far apart (memory follows voxels, not the volume between),
+    // plus a cluster, read through every kind of box.
+    let data = scene(
+        vec![l_model()],
+        &[
+            (0, "0 0 0", ""),
+            (0, "3 1 -2", "33"),
+            (0, "4000000 -3000000 100", "70"),
+        ],
+    );
+    let model = VoxModel::from_bytes(&bytes(&data)).unwrap();
+    assert_eq!(model.voxel_count(), 27);
+    assert!(model.bounds().size().max_element() > 3_000_000);
+    let mut state = 7u64;
+    let mut next = |n: i32| {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 33) as i32 % n
+    };
+    for _ in 0..400 {
+        let min = IVec3::new(next(24) - 12, next(24) - 12, next(24) - 12);
+        let size = IVec3::new(1 + next(20), 1 + next(20), 1 + next(20));
+        let region = voxtrace::IAabb::new(min, min + size);
+        let mut out = vec![7u8; region.volume().unwrap()];
+        model.fill_box(region, &mut out);
+        let expected: Vec<u8> = region.iter().map(|p| model.material(p)).collect();
+        assert_eq!(out, expected, "{region:?}");
+        if model.classify(region) == voxtrace::Region::Empty {
+            assert!(expected.iter().all(|&m| m == 0), "{region:?} called empty");
+        }
+    }
+    // Far from every voxel, the whole space between the instances is empty.
+    let gap = voxtrace::IAabb::new(IVec3::new(100, -100, 0), IVec3::new(3_000_000, 100, 50));
+    assert_eq!(model.classify(gap), voxtrace::Region::Empty);
+}

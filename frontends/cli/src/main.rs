@@ -63,16 +63,16 @@ fn random_seed() -> u64 {
 enum Subject {
     /// The seeded terrain.
     Terrain { seed: u64 },
-    /// A loaded `.vox` scene.
-    Model(VoxModel),
+    /// A loaded `.vox` scene (boxed: its palette alone is 768 bytes).
+    Model(Box<VoxModel>),
 }
 
 fn run(args: &Args) -> Result<(), String> {
     let subject = match &args.vox {
-        Some(path) => Subject::Model(
+        Some(path) => Subject::Model(Box::new(
             VoxModel::load(path)
                 .map_err(|e| format!("cannot load --vox {}: {e}", path.display()))?,
-        ),
+        )),
         None => Subject::Terrain {
             seed: args.seed.unwrap_or_else(|| {
                 let seed = random_seed();
@@ -121,7 +121,9 @@ fn run(args: &Args) -> Result<(), String> {
     let format = output::format_of(&args.out)?;
     let file = File::create(&args.out)
         .map_err(|e| format!("cannot write --out {}: {e}", args.out.display()))?;
-    let result = render_to(args, &subject, bounds, &options, &camera, region, file, format);
+    let result = render_to(
+        args, &subject, bounds, &options, &camera, region, file, format,
+    );
     if result.is_err() {
         let _ = std::fs::remove_file(&args.out);
     }
@@ -201,7 +203,9 @@ fn render_to(
                 let terrain = VoxelGenerator::new(*seed);
                 BuiltScene::build_from(args.backend, &terrain, bounds, threaded)?
             }
-            Subject::Model(model) => BuiltScene::build_from(args.backend, model, bounds, threaded)?,
+            Subject::Model(model) => {
+                BuiltScene::build_from(args.backend, model.as_ref(), bounds, threaded)?
+            }
         };
         let progress = Progress::rows(region.height);
         let rendered = built.render(camera, region, options, threaded, &|rows| {

@@ -236,17 +236,33 @@ pub fn above_position(size: i32) -> Vec3 {
 }
 
 /// A camera position and target that frame `bounds` from a three-quarter
-/// view above: the box's bounding sphere fits the field of view (vertical
-/// `vertical_fov` degrees, width over height `aspect`) with a margin.
+/// view above: every corner of the box inside the field of view (vertical
+/// `vertical_fov` degrees, width over height `aspect`), with a small margin.
 #[must_use]
 pub fn framing(bounds: IAabb, vertical_fov: f32, aspect: f32) -> (Vec3, Vec3) {
     let (min, max) = (bounds.min.as_vec3(), bounds.max.as_vec3());
     let center = (min + max) * 0.5;
-    let radius = (max - min).length() * 0.5;
-    let half_v = (vertical_fov * 0.5).to_radians();
-    let half_h = (half_v.tan() * aspect).atan();
-    let half = half_v.min(half_h);
-    let distance = 1.08 * radius / half.sin();
-    let direction = Vec3::new(-1.0, 0.8, -1.3).normalize();
-    (center + direction * distance, center)
+    // From -x, -z and above: the side MagicaVoxel scenes usually open to.
+    let back = Vec3::new(-1.0, 0.8, -1.3).normalize();
+    let forward = -back;
+    let right = forward.cross(Vec3::Y).normalize();
+    let up = right.cross(forward);
+    let tan_v = (vertical_fov * 0.5).to_radians().tan();
+    let tan_h = tan_v * aspect;
+    // A corner at offset o fits when its sideways extent over its depth
+    // (distance - o . back) stays under the half-angle's tangent.
+    let distance = (0..8)
+        .map(|k| {
+            let corner = Vec3::new(
+                if k & 1 == 0 { min.x } else { max.x },
+                if k & 2 == 0 { min.y } else { max.y },
+                if k & 4 == 0 { min.z } else { max.z },
+            );
+            let o = corner - center;
+            let need_h = o.dot(right).abs() / tan_h;
+            let need_v = o.dot(up).abs() / tan_v;
+            o.dot(back) + need_h.max(need_v)
+        })
+        .fold(0.0f32, f32::max);
+    (center + back * (distance * 1.05), center)
 }

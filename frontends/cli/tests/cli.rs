@@ -351,10 +351,20 @@ fn other_formats_carry_the_pngs_pixels() {
 fn write_vox(name: &str) -> PathBuf {
     use dot_vox::{Color, DotVoxData, Frame, Model, SceneNode, ShapeModel, Size, Voxel};
     let dict = |pairs: &[(&str, &str)]| -> dot_vox::Dict {
-        pairs.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect()
+        pairs
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.to_string()))
+            .collect()
     };
     let voxels = (0..6u8)
-        .flat_map(|x| (0..4u8).map(move |z| Voxel { x, y: x % 3, z, i: 1 + x * 4 + z }))
+        .flat_map(|x| {
+            (0..4u8).map(move |z| Voxel {
+                x,
+                y: x % 3,
+                z,
+                i: 1 + x * 4 + z,
+            })
+        })
         .collect();
     let mut scenes = vec![
         SceneNode::Transform {
@@ -391,7 +401,12 @@ fn write_vox(name: &str) -> PathBuf {
             voxels,
         }],
         palette: (0..=255u8)
-            .map(|i| Color { r: i, g: 200 - i / 2, b: 90, a: 255 })
+            .map(|i| Color {
+                r: i,
+                g: 200 - i / 2,
+                b: 90,
+                a: 255,
+            })
             .collect(),
         materials: Vec::new(),
         scenes,
@@ -411,17 +426,26 @@ fn vox_scenes_render_identically_with_both_backends() {
     if shared.exists() {
         files.push((shared.to_path_buf(), "study"));
     } else {
-        println!("skipped study.vox: {} is absent (third-party models)", shared.display());
+        println!(
+            "skipped study.vox: {} is absent (third-party models)",
+            shared.display()
+        );
     }
     for (path, name) in files {
         let path = path.to_str().unwrap();
         let a = render("dense", &["--vox", path], &format!("{name}-dense.png"));
         let b = render("octree", &["--vox", path], &format!("{name}-octree.png"));
         let (_, _, pixels) = decode(&a);
-        assert!(std::fs::read(&a).unwrap() == std::fs::read(&b).unwrap(), "{name}");
+        assert!(
+            std::fs::read(&a).unwrap() == std::fs::read(&b).unwrap(),
+            "{name}"
+        );
         // The automatic framing puts the model in view: not all sky.
         let first = &pixels[..4];
-        assert!(pixels.chunks(4).any(|p| p != first), "{name}: nothing in view");
+        assert!(
+            pixels.chunks(4).any(|p| p != first),
+            "{name}: nothing in view"
+        );
     }
 }
 
