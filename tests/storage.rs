@@ -146,3 +146,29 @@ fn octree_is_much_smaller_than_dense_on_terrain() {
         dense.storage_bytes()
     );
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+    /// The compile-time sizes bound what the builds use: `const_len` is
+    /// exactly the dense length, `max_len` at least the octree's.
+    #[test]
+    fn compile_time_sizes_bound_the_builds(
+        min in (-20i32..20, -20i32..20, -20i32..20),
+        size in (1i32..40, 1i32..40, 1i32..40),
+        seed in 0u64..1000,
+        percent in 0u64..100,
+    ) {
+        let min = voxtrace::glam::IVec3::new(min.0, min.1, min.2);
+        let bounds = IAabb::new(min, min + voxtrace::glam::IVec3::new(size.0, size.1, size.2));
+        proptest::prop_assert_eq!(
+            DenseScene::const_len(bounds),
+            DenseScene::required_len(bounds).unwrap()
+        );
+        let source = common::sources::speckle(seed, percent);
+        let used = OctreeScene::required_len(&source, bounds).unwrap();
+        let max = OctreeScene::max_len(bounds);
+        proptest::prop_assert!(used.nodes <= max.nodes && used.materials <= max.materials,
+            "{:?} > {:?}", used, max);
+    }
+}
