@@ -1,0 +1,46 @@
+// A tiny static server for the page: index.html and main.js from this
+// folder, voxtrace_web.wasm from cargo's target folder.
+// `node frontends/web/serve.mjs [port]`, then open http://localhost:8080/.
+
+import { createServer } from "node:http";
+import { readFile } from "node:fs/promises";
+import { fileURLToPath } from "node:url";
+import path from "node:path";
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const root = path.resolve(here, "../..");
+const files = {
+  "/": [path.join(here, "index.html"), "text/html"],
+  "/index.html": [path.join(here, "index.html"), "text/html"],
+  "/main.js": [path.join(here, "main.js"), "text/javascript"],
+  "/voxtrace_web.wasm": [
+    path.join(root, "target/wasm32-unknown-unknown/release/voxtrace_web.wasm"),
+    "application/wasm",
+  ],
+};
+
+export function serve(port = 8080) {
+  const server = createServer(async (req, res) => {
+    const entry = files[new URL(req.url, "http://localhost").pathname];
+    if (!entry) {
+      res.writeHead(404).end("not found");
+      return;
+    }
+    try {
+      const body = await readFile(entry[0]);
+      res.writeHead(200, { "content-type": entry[1] }).end(body);
+    } catch (e) {
+      res.writeHead(500).end(`${entry[0]}: ${e.message}` +
+        (entry[1] === "application/wasm"
+          ? " (build it: cargo build --release -p voxtrace-web --target wasm32-unknown-unknown)"
+          : ""));
+    }
+  });
+  return new Promise((resolve) => server.listen(port, "127.0.0.1", () => resolve(server)));
+}
+
+if (process.argv[1] === fileURLToPath(import.meta.url)) {
+  const port = Number(process.argv[2] ?? 8080);
+  await serve(port);
+  console.log(`voxtrace page: http://localhost:${port}/`);
+}
