@@ -49,21 +49,11 @@ impl DenseScene<()> {
     /// when the volume does not fit in `usize`.
     #[must_use]
     pub const fn const_len(bounds: IAabb) -> usize {
-        let (x, y, z) = (
-            bounds.max.x as i64 - bounds.min.x as i64,
-            bounds.max.y as i64 - bounds.min.y as i64,
-            bounds.max.z as i64 - bounds.min.z as i64,
-        );
-        if x <= 0 || y <= 0 || z <= 0 {
+        let Some([x, y, z]) = bounds.const_sides() else {
             return 0;
-        }
+        };
         // Each side is below 2^32: the product fits in u128.
-        let volume = x as u128 * y as u128 * z as u128;
-        if volume > usize::MAX as u128 {
-            usize::MAX
-        } else {
-            volume as usize
-        }
+        crate::math::saturating_usize(x as u128 * y as u128 * z as u128)
     }
 }
 

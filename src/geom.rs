@@ -37,6 +37,20 @@ impl IAabb {
         Self::new(IVec3::splat(-n), IVec3::splat(n))
     }
 
+    /// Side lengths at compile time, widened so that no box overflows;
+    /// `None` for an empty box. What the `const` size functions start from.
+    #[must_use]
+    pub(crate) const fn const_sides(&self) -> Option<[u64; 3]> {
+        let x = self.max.x as i64 - self.min.x as i64;
+        let y = self.max.y as i64 - self.min.y as i64;
+        let z = self.max.z as i64 - self.min.z as i64;
+        if x <= 0 || y <= 0 || z <= 0 {
+            None
+        } else {
+            Some([x as u64, y as u64, z as u64])
+        }
+    }
+
     /// Side lengths; non-positive components mean the box is empty.
     #[must_use]
     pub fn size(&self) -> IVec3 {

@@ -41,3 +41,13 @@ pub(crate) fn floor_cell(x: f32) -> i32 {
 pub(crate) fn to_cell(x: f32) -> i32 {
     x as i32
 }
+
+/// `v` as a `usize`, or `usize::MAX` when it does not fit (for the `const`
+/// size functions).
+pub(crate) const fn saturating_usize(v: u128) -> usize {
+    if v > usize::MAX as u128 {
+        usize::MAX
+    } else {
+        v as usize
+    }
+}

@@ -309,17 +309,12 @@ impl OctreeScene<(), ()> {
     /// buffers. Saturates at `usize::MAX`.
     #[must_use]
     pub const fn max_len(bounds: IAabb) -> OctreeLen {
-        let (x, y, z) = (
-            bounds.max.x as i64 - bounds.min.x as i64,
-            bounds.max.y as i64 - bounds.min.y as i64,
-            bounds.max.z as i64 - bounds.min.z as i64,
-        );
-        if x <= 0 || y <= 0 || z <= 0 {
+        let Some([x, y, z]) = bounds.const_sides() else {
             return OctreeLen {
                 nodes: 0,
                 materials: 0,
             };
-        }
+        };
         let mut side = x;
         if y > side {
             side = y;
@@ -329,7 +324,7 @@ impl OctreeScene<(), ()> {
         }
         // The root cube: the next power of two, at least one brick.
         let mut root: u128 = BRICK as u128;
-        while (root as i64) < side {
+        while root < side as u128 {
             root *= 2;
         }
         // Stored nodes: every level below the root, down to the bricks.
@@ -342,8 +337,8 @@ impl OctreeScene<(), ()> {
             cube /= 2;
         }
         OctreeLen {
-            nodes: saturate(nodes),
-            materials: saturate(root * root * root),
+            nodes: crate::math::saturating_usize(nodes),
+            materials: crate::math::saturating_usize(root * root * root),
         }
     }
 
@@ -427,14 +422,5 @@ impl OctreeScene<alloc::vec::Vec<Node>, alloc::vec::Vec<u8>> {
             materials,
             palette: palette.clone(),
         }
-    }
-}
-
-/// `v` as a `usize`, or `usize::MAX` when it does not fit.
-const fn saturate(v: u128) -> usize {
-    if v > usize::MAX as u128 {
-        usize::MAX
-    } else {
-        v as usize
     }
 }

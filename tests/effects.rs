@@ -4,29 +4,14 @@
 
 mod common;
 
+use common::frames::{camera, scalar as frame};
 use common::sources::speckle;
 use proptest::prelude::*;
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
     render, unpack, Camera, CameraSettings, DenseScene, FnSource, Fog, IAabb, Occlusion,
-    OctreeScene, Palette, RayStats, RenderOptions, Scene, VoxelGenerator, SKY_HORIZON,
+    OctreeScene, Palette, RenderOptions, Scene, VoxelGenerator, SKY_HORIZON,
 };
-
-fn camera(width: u32, height: u32, lookfrom: Vec3) -> Camera {
-    Camera::new(CameraSettings {
-        width,
-        height,
-        lookfrom,
-        ..CameraSettings::default()
-    })
-    .unwrap()
-}
-
-fn frame(scene: &impl Scene, camera: &Camera, options: &RenderOptions) -> (Vec<u32>, RayStats) {
-    let mut pixels = vec![0; (camera.width() * camera.height()) as usize];
-    let stats = render(scene, camera, options, &mut pixels).unwrap();
-    (pixels, stats)
-}
 
 /// Primary hits of the frame, counted from the tracer alone: all of them,
 /// those that entered through a face, and those on a face `sun` lights.

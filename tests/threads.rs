@@ -4,15 +4,15 @@
 
 mod common;
 
+use common::frames::{camera, scalar};
 use common::sources::speckle;
 use proptest::prelude::*;
 use voxtrace::glam::{IVec3, Vec3};
 use voxtrace::rayon::prelude::*;
 use voxtrace::rayon::{ThreadPool, ThreadPoolBuilder};
 use voxtrace::{
-    render, render_parallel, render_region, Camera, CameraSettings, DenseScene, Error, Fog,
-    Framebuffer, IAabb, Occlusion, OctreeScene, RayStats, Rect, RenderOptions, Scene,
-    VoxelGenerator,
+    render_parallel, render_region, Camera, DenseScene, Error, Fog, Framebuffer, IAabb, Occlusion,
+    OctreeScene, RayStats, Rect, RenderOptions, Scene, VoxelGenerator,
 };
 
 fn pool(threads: usize) -> ThreadPool {
@@ -20,22 +20,6 @@ fn pool(threads: usize) -> ThreadPool {
         .num_threads(threads)
         .build()
         .expect("a local pool")
-}
-
-fn camera(width: u32, height: u32, lookfrom: Vec3) -> Camera {
-    Camera::new(CameraSettings {
-        width,
-        height,
-        lookfrom,
-        ..CameraSettings::default()
-    })
-    .unwrap()
-}
-
-fn scalar(scene: &impl Scene, camera: &Camera, options: &RenderOptions) -> (Vec<u32>, RayStats) {
-    let mut pixels = vec![0; (camera.width() * camera.height()) as usize];
-    let stats = render(scene, camera, options, &mut pixels).unwrap();
-    (pixels, stats)
 }
 
 fn parallel(

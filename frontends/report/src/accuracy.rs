@@ -4,7 +4,6 @@
 //! reference.
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
 
 use voxtrace::glam::Vec3;
 use voxtrace::{
@@ -13,8 +12,9 @@ use voxtrace::{
 };
 use voxtrace_cli::on_threads;
 
+use crate::common_args::Output;
 use crate::measure::{cpu_name, format_ms, median_of};
-use crate::plot::{self, Chart, Line, Series};
+use crate::plot::{Chart, Line, Series};
 use plotters::chart::SeriesLabelPosition;
 
 /// Options of the `accuracy` report.
@@ -26,15 +26,8 @@ pub struct AccuracyArgs {
     /// Timed runs per setting (after one untimed warm-up).
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u16).range(1..))]
     runs: u16,
-    /// Worker threads [default: all cores].
-    #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
-    threads: Option<u16>,
-    /// Folder for accuracy.md and accuracy.png.
-    #[arg(long, default_value = "docs/report")]
-    out_dir: PathBuf,
-    /// TrueType font for the plot's text [default: a system sans-serif].
-    #[arg(long)]
-    font: Option<PathBuf>,
+    #[command(flatten)]
+    output: Output,
 }
 
 /// The scene: terrain of seed 1 in a volume of side 128, seen from above
@@ -109,9 +102,7 @@ struct Row {
 /// `accuracy.png` into `--out-dir`.
 pub fn run(args: &AccuracyArgs) -> Result<(), String> {
     let (width, height) = if args.full { (1920, 1080) } else { (640, 360) };
-    std::fs::create_dir_all(&args.out_dir)
-        .map_err(|e| format!("cannot create {}: {e}", args.out_dir.display()))?;
-    plot::load_font(args.font.as_deref())?;
+    args.output.prepare()?;
     let camera = Camera::new(CameraSettings {
         width,
         height,
@@ -124,7 +115,7 @@ pub fn run(args: &AccuracyArgs) -> Result<(), String> {
     let frame = Framebuffer::new(width, height).map_err(|e| e.to_string())?;
     let runs = usize::from(args.runs);
 
-    let (rows, reference_ms, threads) = on_threads(args.threads, || {
+    let (rows, reference_ms, threads) = on_threads(args.output.threads, || {
         let threads = voxtrace::rayon::current_num_threads();
         let render = |options: &RenderOptions| -> Result<(std::time::Duration, RayStats), String> {
             let started = std::time::Instant::now();
@@ -164,12 +155,8 @@ pub fn run(args: &AccuracyArgs) -> Result<(), String> {
         if args.full { " --full" } else { "" }
     );
     let md = table(&rows, &command, width, height, threads, runs, reference_ms);
-    let table_path = args.out_dir.join("accuracy.md");
-    std::fs::write(&table_path, md)
-        .map_err(|e| format!("cannot write {}: {e}", table_path.display()))?;
-    let plot_path = args.out_dir.join("accuracy.png");
-    plot::draw(&plot_path, &[chart(&rows, width, height)])?;
-    eprintln!("wrote {} and {}", table_path.display(), plot_path.display());
+    args.output
+        .write("accuracy", &md, &[chart(&rows, width, height)])?;
     Ok(())
 }
 

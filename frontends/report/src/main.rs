@@ -5,6 +5,7 @@
 //! `cargo run --release -p voxtrace-report -- accuracy [--full]`
 
 mod accuracy;
+mod common_args;
 mod measure;
 mod plot;
 mod speed;

@@ -3,13 +3,13 @@
 //! and a plot of render time and memory against scene size.
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
 
 use voxtrace::{Camera, CameraSettings, Rect, RenderOptions, VoxelGenerator};
 use voxtrace_cli::{above_position, on_threads, paper_position, Backend, BuiltScene};
 
+use crate::common_args::Output;
 use crate::measure::{cpu_name, format_bytes, format_ms, median_of};
-use crate::plot::{self, Chart, Line, Series};
+use crate::plot::{Chart, Line, Series};
 use crate::surface::surface_voxels;
 use plotters::chart::SeriesLabelPosition;
 
@@ -25,15 +25,8 @@ pub struct SpeedArgs {
     /// Terrain seed.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Worker threads, as the CLI's --threads [default: all cores].
-    #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
-    threads: Option<u16>,
-    /// Folder for speed.md and speed.png.
-    #[arg(long, default_value = "docs/report")]
-    out_dir: PathBuf,
-    /// TrueType font for the plot's text [default: a system sans-serif].
-    #[arg(long)]
-    font: Option<PathBuf>,
+    #[command(flatten)]
+    output: Output,
 }
 
 /// The seed paper's scene sizes, and the octree-only sizes past them.
@@ -92,12 +85,9 @@ impl Measured {
 /// Measures the grid, writes `speed.md` and `speed.png` into `--out-dir`.
 pub fn run(args: &SpeedArgs) -> Result<(), String> {
     let runs = usize::from(args.runs.unwrap_or(if args.quick { 3 } else { 5 }));
-    std::fs::create_dir_all(&args.out_dir)
-        .map_err(|e| format!("cannot create {}: {e}", args.out_dir.display()))?;
-    // Check the font before minutes of measuring, not after.
-    plot::load_font(args.font.as_deref())?;
+    args.output.prepare()?;
 
-    let (measured, threads) = on_threads(args.threads, || {
+    let (measured, threads) = on_threads(args.output.threads, || {
         let threads = voxtrace::rayon::current_num_threads();
         Ok((measure_all(args, runs)?, threads))
     })?;
@@ -107,13 +97,8 @@ pub fn run(args: &SpeedArgs) -> Result<(), String> {
         if args.quick { " --quick" } else { "" }
     );
     let markdown = tables(&measured, threads, runs, args.seed, &command);
-    let table_path = args.out_dir.join("speed.md");
-    std::fs::write(&table_path, &markdown)
-        .map_err(|e| format!("cannot write {}: {e}", table_path.display()))?;
-    let plot_path = args.out_dir.join("speed.png");
-    plot::draw(&plot_path, &charts(&measured, threads))?;
-    eprintln!("wrote {} and {}", table_path.display(), plot_path.display());
-    Ok(())
+    args.output
+        .write("speed", &markdown, &charts(&measured, threads))
 }
 
 fn measure_all(args: &SpeedArgs, runs: usize) -> Result<Vec<Measured>, String> {

@@ -1,0 +1,43 @@
+//! Options every report takes: threads, where to write, the plot's font.
+
+use std::path::PathBuf;
+
+/// Where a report runs and writes.
+#[derive(Debug, clap::Args)]
+pub struct Output {
+    /// Worker threads, as the CLI's --threads [default: all cores].
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
+    pub threads: Option<u16>,
+    /// Folder for the report's markdown table and PNG plot.
+    #[arg(long, default_value = "docs/report")]
+    pub out_dir: PathBuf,
+    /// TrueType font for the plot's text [default: a system sans-serif].
+    #[arg(long)]
+    pub font: Option<PathBuf>,
+}
+
+impl Output {
+    /// Creates the output folder and loads the plot's font: both checked
+    /// before minutes of measuring, not after.
+    pub fn prepare(&self) -> Result<(), String> {
+        std::fs::create_dir_all(&self.out_dir)
+            .map_err(|e| format!("cannot create {}: {e}", self.out_dir.display()))?;
+        crate::plot::load_font(self.font.as_deref())
+    }
+
+    /// Writes `markdown` as `<name>.md` and draws `charts` as `<name>.png`.
+    pub fn write(
+        &self,
+        name: &str,
+        markdown: &str,
+        charts: &[crate::plot::Chart],
+    ) -> Result<(), String> {
+        let table = self.out_dir.join(format!("{name}.md"));
+        std::fs::write(&table, markdown)
+            .map_err(|e| format!("cannot write {}: {e}", table.display()))?;
+        let plot = self.out_dir.join(format!("{name}.png"));
+        crate::plot::draw(&plot, charts)?;
+        eprintln!("wrote {} and {}", table.display(), plot.display());
+        Ok(())
+    }
+}
