@@ -72,4 +72,12 @@ fuzz_target!(|data: &[u8]| {
     if let Err(e) = reference::check_geometry(&ray, b.hit.as_ref(), &f.solids) {
         panic!("{e}: {ray:?}");
     }
+    // The reach-limited trace is the full trace cut at `t_max`: at the hit,
+    // just before it, and at a reach taken from the input.
+    let reach = data.get(30).map_or(0.0, |&b| f32::from(b) * 0.25);
+    for t_max in [a.hit.map_or(reach, |h| h.t), a.hit.map_or(reach, |h| h.t * 0.999), reach] {
+        let expected = a.hit.filter(|h| h.t <= t_max);
+        assert_eq!(f.dense.trace_within(&ray, t_max), expected, "{ray:?} within {t_max}");
+        assert_eq!(f.octree.trace_within(&ray, t_max), expected, "{ray:?} within {t_max}");
+    }
 });

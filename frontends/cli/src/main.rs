@@ -68,6 +68,9 @@ enum Subject {
 }
 
 fn run(args: &Args) -> Result<(), String> {
+    if args.vox.is_some() && args.seed.is_some() {
+        eprintln!("note: --seed shapes the terrain; a --vox scene does not use it");
+    }
     let subject = match &args.vox {
         Some(path) => Subject::Model(Box::new(
             VoxModel::load(path)
