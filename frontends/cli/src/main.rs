@@ -68,8 +68,9 @@ enum Subject {
 }
 
 fn run(args: &Args) -> Result<(), String> {
+    let mut notes = ignored_effects(&render_options(args, IAabb::centered(args.size)));
     if args.vox.is_some() && args.seed.is_some() {
-        eprintln!("note: --seed shapes the terrain; a --vox scene does not use it");
+        notes.push("--seed shapes the terrain; a --vox scene does not use it".to_string());
     }
     let subject = match &args.vox {
         Some(path) => Subject::Model(Box::new(
@@ -118,7 +119,6 @@ fn run(args: &Args) -> Result<(), String> {
     })?;
 
     let options = render_options(args, bounds);
-    explain_ignored(&options);
 
     // Check the output first: a bad path fails now, not after the render.
     let format = output::format_of(&args.out)?;
@@ -127,8 +127,12 @@ fn run(args: &Args) -> Result<(), String> {
     let result = render_to(
         args, &subject, bounds, &options, &camera, region, file, format,
     );
-    if result.is_err() {
-        let _ = std::fs::remove_file(&args.out);
+    match result {
+        // Notes only after a success: an error stays the one line on stderr.
+        Ok(()) => notes.iter().for_each(|note| eprintln!("note: {note}")),
+        Err(_) => {
+            let _ = std::fs::remove_file(&args.out);
+        }
     }
     result
 }
@@ -152,12 +156,13 @@ fn render_options(args: &Args, bounds: IAabb) -> RenderOptions {
     }
 }
 
-/// One line on stderr for each effect asked for that cannot run, so that a
-/// user is not left wondering why it did not.
-fn explain_ignored(asked: &RenderOptions) {
+/// One note for each effect asked for that cannot run, so that a user is
+/// not left wondering why it did not.
+fn ignored_effects(asked: &RenderOptions) -> Vec<String> {
+    let mut notes = Vec::new();
     let runs = asked.effective();
     if asked.shadows && !runs.shadows && asked.sun.is_none() && !(asked.flat || asked.debug) {
-        eprintln!("note: the scene has no light (--sun none): --shadows traces no shadow rays");
+        notes.push("the scene has no light (--sun none): --shadows traces no shadow rays".into());
     }
     let view = if asked.flat { "--flat" } else { "--debug" };
     let mut ignored = Vec::new();
@@ -179,11 +184,12 @@ fn explain_ignored(asked: &RenderOptions) {
         }
     }
     if !ignored.is_empty() {
-        eprintln!(
-            "note: {view} draws no effects: ignoring {}",
+        notes.push(format!(
+            "{view} draws no effects: ignoring {}",
             ignored.join(", ")
-        );
+        ));
     }
+    notes
 }
 
 /// Builds the scene and renders it with the thread count of `--threads`,
