@@ -99,6 +99,13 @@ fn build_in_uses_exactly_the_reported_lengths() {
 
     let dense_len = DenseScene::required_len(bounds).unwrap();
     assert_eq!(dense_len, 25 * 17 * 18);
+    // A buffer full of garbage builds the same scene as a fresh one.
+    let mut garbage = vec![0xA5u8; dense_len];
+    let from_garbage = DenseScene::build_in(&source, bounds, &mut garbage).unwrap();
+    let fresh = DenseScene::build(&source, bounds).unwrap();
+    for p in IAabb::new(bounds.min - 2, bounds.max + 2).iter() {
+        assert_eq!(from_garbage.material(p), fresh.material(p), "{p}");
+    }
     let mut cells = vec![0u8; dense_len - 1];
     assert_eq!(
         DenseScene::build_in(&source, bounds, &mut cells).err(),
