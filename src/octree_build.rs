@@ -303,45 +303,6 @@ fn build_root<S: VoxelSource + ?Sized, K: Sink>(
 }
 
 impl OctreeScene<(), ()> {
-    /// The most nodes and material bytes [`OctreeScene::build_in`] can use
-    /// for any source over `bounds` (a full tree down to 4^3 bricks, every
-    /// voxel with its own material byte), at compile time, to size `static`
-    /// buffers. Saturates at `usize::MAX`.
-    #[must_use]
-    pub const fn max_len(bounds: IAabb) -> OctreeLen {
-        let Some([x, y, z]) = bounds.const_sides() else {
-            return OctreeLen {
-                nodes: 0,
-                materials: 0,
-            };
-        };
-        let mut side = x;
-        if y > side {
-            side = y;
-        }
-        if z > side {
-            side = z;
-        }
-        // The root cube: the next power of two, at least one brick.
-        let mut root: u128 = BRICK as u128;
-        while root < side as u128 {
-            root *= 2;
-        }
-        // Stored nodes: every level below the root, down to the bricks.
-        let mut nodes: u128 = 0;
-        let mut level: u128 = 1;
-        let mut cube = root;
-        while cube > BRICK as u128 {
-            level *= 8;
-            nodes += level;
-            cube /= 2;
-        }
-        OctreeLen {
-            nodes: crate::math::saturating_usize(nodes),
-            materials: crate::math::saturating_usize(root * root * root),
-        }
-    }
-
     /// Exactly how many nodes and material bytes [`OctreeScene::build_in`]
     /// will use for this source and bounds. Runs the build without storing
     /// anything (so it costs about one build). Allocates nothing.

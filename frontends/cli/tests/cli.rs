@@ -229,7 +229,10 @@ fn bad_input_exits_2_with_one_line_naming_the_value() {
         (&["--out", "x.webp"], ".webp"),
         (&["--vox", "/nonexistent.vox"], "/nonexistent.vox"),
         // A note-worthy flag does not add a line to an error.
-        (&["--sun", "none", "--shadows", "--out", unwritable], unwritable),
+        (
+            &["--sun", "none", "--shadows", "--out", unwritable],
+            unwritable,
+        ),
         (
             &["--size", "4194304", "--backend", "dense"],
             "590295810358705651712 bytes",

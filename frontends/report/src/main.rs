@@ -9,6 +9,7 @@ mod common_args;
 mod measure;
 mod plot;
 mod speed;
+mod speed_tables;
 mod surface;
 
 use std::process::ExitCode;
