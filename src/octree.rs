@@ -126,10 +126,14 @@ impl OctreeScene<(), ()> {
 /// # Guarantees
 /// The root cube starts at `bounds.min` and has a power-of-two side of at
 /// least 4 covering the bounds; every child index and material offset points
-/// inside its slice; positions outside the bounds are empty.
+/// inside its slice; positions outside the bounds are empty, and so are
+/// positions outside `occupied`, the tight box of the solid voxels.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct OctreeScene<N, M> {
     pub(crate) bounds: IAabb,
+    /// The tight box of the solid voxels (empty when there are none): rays
+    /// start their walk where they enter it.
+    pub(crate) occupied: IAabb,
     pub(crate) root: Node,
     pub(crate) root_size: i32,
     pub(crate) nodes: N,
@@ -197,5 +201,70 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     #[must_use]
     pub fn is_empty(&self) -> bool {
         matches!(self.root.0, NodeKind::Branch { children: 0, .. })
+    }
+}
+
+/// The tight box around the solid voxels of the tree with `root` (a cube of
+/// side `root_size` at `min`), clipped to `bounds`; an empty box when there
+/// are none. One visit of every node.
+pub(crate) fn occupied_box(root: Node, root_size: i32, bounds: IAabb, nodes: &[Node]) -> IAabb {
+    let mut found = IAabb {
+        min: IVec3::MAX,
+        max: IVec3::MIN,
+    };
+    grow(root, bounds.min, root_size, nodes, &mut found);
+    // Compared, not subtracted: an untouched `found` spans MAX to MIN.
+    let clipped = found.intersect(&bounds);
+    if clipped.min.cmplt(clipped.max).all() {
+        clipped
+    } else {
+        IAabb {
+            min: bounds.min,
+            max: bounds.min,
+        }
+    }
+}
+
+/// Grows `found` by the solid voxels of `node`, a cube of `side` at
+/// `corner`. Recursion depth is the tree's depth (at most 22).
+fn grow(node: Node, corner: IVec3, side: i32, nodes: &[Node], found: &mut IAabb) {
+    let mut take = |lo: IVec3, hi: IVec3| {
+        found.min = found.min.min(lo);
+        found.max = found.max.max(hi);
+    };
+    match node.0 {
+        NodeKind::Solid(_) => take(corner, corner + side),
+        NodeKind::Brick { occupancy, .. } => {
+            let (mut lo, mut hi) = (IVec3::splat(BRICK), IVec3::ZERO);
+            let mut bits = occupancy;
+            while bits != 0 {
+                let bit = bits.trailing_zeros() as i32;
+                let local = IVec3::new(bit & 3, (bit >> 2) & 3, bit >> 4);
+                lo = lo.min(local);
+                hi = hi.max(local + 1);
+                bits &= bits - 1;
+            }
+            if occupancy != 0 {
+                take(corner + lo, corner + hi);
+            }
+        }
+        NodeKind::Branch { children, first } => {
+            let half = side / 2;
+            let mut rank = 0;
+            for child in 0..8u32 {
+                if children & (1 << child) == 0 {
+                    continue;
+                }
+                let offset = IVec3::new(
+                    (child & 1) as i32,
+                    (child >> 1 & 1) as i32,
+                    (child >> 2 & 1) as i32,
+                ) * half;
+                if let Some(&next) = nodes.get((first + rank) as usize) {
+                    grow(next, corner + offset, half, nodes, found);
+                }
+                rank += 1;
+            }
+        }
     }
 }

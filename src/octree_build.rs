@@ -9,7 +9,9 @@
 use glam::IVec3;
 
 use crate::geom::IAabb;
-use crate::octree::{brick_bit, BrickMaterials, Node, NodeKind, OctreeLen, OctreeScene, BRICK};
+use crate::octree::{
+    brick_bit, occupied_box, BrickMaterials, Node, NodeKind, OctreeLen, OctreeScene, BRICK,
+};
 use crate::voxel::{Region, VoxelSource};
 use crate::Error;
 
@@ -335,11 +337,13 @@ impl<'a> OctreeScene<&'a [Node], &'a [u8]> {
             materials,
             used,
         } = sink;
+        let nodes = &nodes[..used.nodes];
         Ok(OctreeScene {
             bounds,
+            occupied: occupied_box(root, root_size, bounds, nodes),
             root,
             root_size,
-            nodes: &nodes[..used.nodes],
+            nodes,
             materials: &materials[..used.materials],
             palette: source.palette().clone(),
         })
@@ -377,6 +381,7 @@ impl OctreeScene<alloc::vec::Vec<Node>, alloc::vec::Vec<u8>> {
         materials.shrink_to_fit();
         OctreeScene {
             bounds,
+            occupied: occupied_box(root, root_size, bounds, &nodes),
             root,
             root_size,
             nodes,

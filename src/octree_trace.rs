@@ -35,15 +35,17 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
     }
 
     fn trace_counted(&self, ray: &Ray) -> Traced {
-        self.walk(ray, f32::INFINITY, |_| true)
+        self.walk(ray, self.occupied, f32::INFINITY, |_| true)
     }
 
+    /// Walks the whole volume (not only the occupied box), so the debug
+    /// view shows every box of the tree a ray crosses.
     fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced {
-        self.walk(ray, f32::INFINITY, visit)
+        self.walk(ray, self.bounds, f32::INFINITY, visit)
     }
 
     fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        let hit = self.walk(ray, t_max, |_| true).hit;
+        let hit = self.walk(ray, self.occupied, t_max, |_| true).hit;
         hit.filter(|h| h.t <= t_max)
     }
 
@@ -56,20 +58,35 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
 }
 
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
-    /// The box-at-a-time walk, showing `visit` each empty cube it leaves and
-    /// giving up once it enters a cube farther than `t_max`; monomorphized so
-    /// that tracing without a visitor pays nothing for it.
+    /// The box-at-a-time walk through `region` (the occupied box, or the
+    /// whole volume), showing `visit` each empty cube it leaves and giving up
+    /// once it enters a cube farther than `t_max`; monomorphized so that
+    /// tracing without a visitor pays nothing for it.
+    ///
+    /// Starting at the region instead of the volume changes nothing but
+    /// speed: outside the occupied box every cell is empty, and the walk
+    /// enters the region at the crossing single steps would enter it by.
     #[inline]
-    fn walk<V: FnMut(IAabb) -> bool>(&self, ray: &Ray, t_max: f32, mut visit: V) -> Traced {
-        let Some(walk) = Walk::start(ray, &self.bounds) else {
+    fn walk<V: FnMut(IAabb) -> bool>(
+        &self,
+        ray: &Ray,
+        region: IAabb,
+        t_max: f32,
+        mut visit: V,
+    ) -> Traced {
+        let walk = (!region.is_empty())
+            .then(|| Walk::start(ray, &region))
+            .flatten();
+        let Some(walk) = walk else {
             return Traced {
                 hit: None,
                 steps: 0,
             };
         };
         let min = self.bounds.min;
-        let leaves_bounds = walk.exit_of(self.bounds.min, self.bounds.max);
-        let size = self.bounds.size();
+        let leaves_region = walk.exit_of(region.min, region.max);
+        // The region relative to the tree's corner.
+        let (region_lo, region_hi) = (region.min - min, region.max - min);
         let nodes = self.nodes.as_ref();
         let root_log = self.root_size.trailing_zeros();
         // path[d] (d >= 1): index of the node at depth d holding the
@@ -147,13 +164,19 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             let axis = exit.axis as usize;
             corner = cube;
             corner[axis] += if walk.moves_up(axis) { side } else { -side };
-            // Left the volume? On the volume's own exit axis, by position:
-            // far from the origin several planes of one axis can share a key,
-            // and they are still crossed in order.
-            let left = if usize::from(leaves_bounds.axis) == axis {
-                !(0..size[axis]).contains(&corner[axis])
+            // Left the region? On the region's own exit axis, by position
+            // (the new cube lies wholly beyond it): far from the origin
+            // several planes of one axis can share a key, and they are
+            // still crossed in order. A cube straddling the region's face
+            // is not left yet; its cells past the face are empty anyway.
+            let left = if usize::from(leaves_region.axis) == axis {
+                if walk.moves_up(axis) {
+                    corner[axis] >= region_hi[axis]
+                } else {
+                    corner[axis] + side <= region_lo[axis]
+                }
             } else {
-                leaves_bounds.lt(exit)
+                leaves_region.lt(exit)
             };
             if left {
                 return Traced { hit: None, steps };

@@ -4,11 +4,13 @@
 
 mod common;
 
-use common::rays::{ray_for, Rng};
-use common::reference::{as_ref_hit, first_hit};
+use common::rays::{point_in, ray_for, Rng};
+use common::reference::{as_ref_hit, first_hit, first_hit_among};
 use common::sources::speckle;
-use voxtrace::glam::IVec3;
-use voxtrace::{max_steps, DenseScene, IAabb, OctreeScene, Scene, VoxelGenerator, VoxelSource};
+use voxtrace::glam::{IVec3, Vec3};
+use voxtrace::{
+    max_steps, DenseScene, IAabb, OctreeScene, Ray, Scene, VoxelGenerator, VoxelSource,
+};
 
 fn assert_backends_agree<S: VoxelSource>(source: &S, bounds: IAabb, rays: usize, seed: u64) {
     let dense = DenseScene::build(source, bounds).unwrap();
@@ -147,4 +149,52 @@ fn backends_render_byte_identical_images() {
             );
         }
     }
+}
+
+#[test]
+fn backends_agree_when_the_solid_voxels_fill_a_small_part_of_the_volume() {
+    // The octree starts its walk at the box around its solid voxels; rays
+    // from inside, outside and on that box's faces must not notice.
+    let few = |p: IVec3| {
+        let block = (3..6).contains(&p.x) && (-2..1).contains(&p.y) && (7..9).contains(&p.z);
+        u8::from(block && (p.x + p.y + p.z) % 2 == 0) + u8::from(p == IVec3::new(-9, 11, -4))
+    };
+    let source = voxtrace::FnSource::new(common::sources::palette(4), few);
+    let bounds = IAabb::new(IVec3::splat(-16), IVec3::splat(16));
+    let dense = DenseScene::build(&source, bounds).unwrap();
+    let octree = OctreeScene::build(&source, bounds).unwrap();
+    let solids: Vec<(IVec3, u8)> = bounds
+        .iter()
+        .map(|p| (p, few(p)))
+        .filter(|s| s.1 != 0)
+        .collect();
+    let mut rng = Rng::new(5);
+    let mut hits = 0;
+    for i in 0..6000 {
+        // Aimed at the occupied box [-9, 6) x [-2, 12) x [-4, 9), from
+        // anywhere around the volume, integer origins every third ray.
+        let mut origin = point_in(&mut rng, Vec3::splat(-24.0), Vec3::splat(24.0));
+        if i % 3 == 0 {
+            origin = origin.round();
+        }
+        let (lo, hi) = match i % 3 {
+            0 => (Vec3::new(-9.0, -2.0, -4.0), Vec3::new(6.0, 12.0, 9.0)), // the whole box
+            1 => (Vec3::new(3.0, -2.0, 7.0), Vec3::new(6.0, 1.0, 9.0)),    // the block
+            _ => (Vec3::new(-9.0, 11.0, -4.0), Vec3::new(-8.0, 12.0, -3.0)), // the lone voxel
+        };
+        let target = point_in(&mut rng, lo, hi);
+        let Ok(ray) = Ray::new(origin, target - origin) else {
+            continue;
+        };
+        let (a, b) = (dense.trace(&ray), octree.trace(&ray));
+        assert_eq!(a, b, "ray {i}: {ray:?}");
+        assert_eq!(a.map(|h| h.t.to_bits()), b.map(|h| h.t.to_bits()));
+        assert_eq!(
+            as_ref_hit(b),
+            first_hit_among(&ray, solids.iter().copied()),
+            "ray {i}"
+        );
+        hits += usize::from(a.is_some());
+    }
+    assert!(hits > 2000, "{hits} hits");
 }
