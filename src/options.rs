@@ -100,10 +100,8 @@ impl RenderOptions {
     /// sample, at least one occlusion ray, positive finite distances.
     pub fn validate(&self) -> Result<(), Error> {
         let invalid = |reason| Err(Error::InvalidOptions { reason });
-        if let Some(sun) = self.sun {
-            if !sun.is_finite() || sun == Vec3::ZERO {
-                return invalid("the sun direction must be finite and non-zero");
-            }
+        if self.sun.is_some_and(|sun| !usable_sun(sun)) {
+            return invalid("the sun direction must be finite and non-zero");
         }
         if self.samples == 0 {
             return invalid("samples per pixel must be at least 1");
@@ -112,16 +110,30 @@ impl RenderOptions {
             if ao.rays == 0 {
                 return invalid("ambient occlusion needs at least one ray");
             }
-            if !(ao.distance > 0.0 && ao.distance.is_finite()) {
+            if !usable_distance(ao.distance) {
                 return invalid("the occlusion distance must be positive and finite");
             }
         }
-        if let Some(fog) = self.fog {
-            if !(fog.distance > 0.0 && fog.distance.is_finite()) {
-                return invalid("the fog distance must be positive and finite");
-            }
+        if self.fog.is_some_and(|fog| !usable_distance(fog.distance)) {
+            return invalid("the fog distance must be positive and finite");
         }
         Ok(())
+    }
+
+    /// [`RenderOptions::effective`] with every setting
+    /// [`RenderOptions::validate`] would reject turned off (at least one
+    /// sample): what renderers that cannot return an error run.
+    #[must_use]
+    pub(crate) fn sanitized(&self) -> RenderOptions {
+        let mut options = self.effective();
+        options.sun = options.sun.filter(|&sun| usable_sun(sun));
+        options.shadows &= options.sun.is_some();
+        options.samples = options.samples.max(1);
+        options.occlusion = options
+            .occlusion
+            .filter(|ao| ao.rays > 0 && usable_distance(ao.distance));
+        options.fog = options.fog.filter(|fog| usable_distance(fog.distance));
+        options
     }
 
     /// The effects that will actually run: the settings with what cannot
@@ -145,4 +157,14 @@ impl RenderOptions {
             ..*self
         }
     }
+}
+
+/// A sun direction the shading can normalize.
+fn usable_sun(sun: Vec3) -> bool {
+    sun.is_finite() && sun != Vec3::ZERO
+}
+
+/// A positive, finite distance.
+fn usable_distance(distance: f32) -> bool {
+    distance > 0.0 && distance.is_finite()
 }

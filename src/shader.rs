@@ -42,18 +42,7 @@ impl<'c> Shader<'c> {
     /// The shader of `options` for `camera`'s frame. Settings
     /// [`RenderOptions::validate`] rejects are turned off, never a panic.
     pub(crate) fn new(options: &RenderOptions, camera: &'c Camera) -> Self {
-        let mut options = options.effective();
-        if options.validate().is_err() {
-            options.sun = options.sun.filter(|s| s.is_finite() && *s != Vec3::ZERO);
-            options.shadows &= options.sun.is_some();
-            options.samples = options.samples.max(1);
-            options.occlusion = options
-                .occlusion
-                .filter(|ao| ao.rays > 0 && ao.distance > 0.0 && ao.distance.is_finite());
-            options.fog = options
-                .fog
-                .filter(|fog| fog.distance > 0.0 && fog.distance.is_finite());
-        }
+        let options = options.sanitized();
         let (light, shadowed, sunlit, sun) = face_weights(options.sun);
         Shader {
             camera,

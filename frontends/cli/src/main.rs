@@ -68,10 +68,6 @@ enum Subject {
 }
 
 fn run(args: &Args) -> Result<(), String> {
-    let mut notes = ignored_effects(&render_options(args, IAabb::centered(args.size)));
-    if args.vox.is_some() && args.seed.is_some() {
-        notes.push("--seed shapes the terrain; a --vox scene does not use it".to_string());
-    }
     let subject = match &args.vox {
         Some(path) => Subject::Model(Box::new(
             VoxModel::load(path)
@@ -119,6 +115,10 @@ fn run(args: &Args) -> Result<(), String> {
     })?;
 
     let options = render_options(args, bounds);
+    let mut notes = ignored_effects(&options);
+    if args.vox.is_some() && args.seed.is_some() {
+        notes.push("--seed shapes the terrain; a --vox scene does not use it".to_string());
+    }
 
     // Check the output first: a bad path fails now, not after the render.
     let format = output::format_of(&args.out)?;

@@ -126,7 +126,7 @@ pub fn run(args: &AccuracyArgs) -> Result<(), String> {
         let (samples, ao, shadows) = REFERENCE;
         eprintln!("reference: {samples} spp x {ao} AO rays, shadows, {width}x{height}");
         let (elapsed, _) = render(&look(samples, ao, shadows))?;
-        let reference = snapshot(&frame)?;
+        let reference = frame.to_vec();
         let mut rows = Vec::new();
         for axis in axes() {
             for (setting, options) in axis.settings {
@@ -136,7 +136,7 @@ pub fn run(args: &AccuracyArgs) -> Result<(), String> {
                     rays = counted;
                     Ok(elapsed)
                 })?;
-                let rmse = rmse(&snapshot(&frame)?, &reference);
+                let rmse = rmse(&frame.to_vec(), &reference);
                 eprintln!("{setting}: {} rmse {rmse:.3}", format_ms(ms));
                 rows.push(Row {
                     axis: axis.name,
@@ -158,13 +158,6 @@ pub fn run(args: &AccuracyArgs) -> Result<(), String> {
     args.output
         .write("accuracy", &md, &[chart(&rows, width, height)])?;
     Ok(())
-}
-
-/// A copy of the frame's pixels.
-fn snapshot(frame: &Framebuffer) -> Result<Vec<u32>, String> {
-    let mut pixels = vec![0; frame.width() as usize * frame.height() as usize];
-    frame.copy_to(&mut pixels).map_err(|e| e.to_string())?;
-    Ok(pixels)
 }
 
 /// Root mean square difference over every color channel, in 0..=255 units.
