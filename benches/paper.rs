@@ -37,17 +37,15 @@ const SEED: u64 = 1;
 /// The paper's camera, (size - 10) on every axis looking at the origin; or
 /// one above the terrain, outside the volume, looking down at the origin.
 fn camera(size: i32, (width, height): (u32, u32), above: bool) -> Camera {
-    let n = size as f32;
-    let lookfrom = if above {
-        Vec3::new(0.6 * n, n + 120.0, 1.2 * n)
+    let view = if above {
+        CameraSettings::above(size)
     } else {
-        Vec3::splat(n - 10.0)
+        CameraSettings::paper(size)
     };
     Camera::new(CameraSettings {
         width,
         height,
-        lookfrom,
-        ..CameraSettings::default()
+        ..view
     })
     .expect("valid camera")
 }

@@ -2,9 +2,8 @@
 
 use glam::{IVec3, Vec3};
 
+use crate::error::Error;
 use crate::math::sqrt32;
-use crate::voxel::Voxel;
-use crate::Error;
 
 /// The largest absolute voxel coordinate a volume may use.
 ///
@@ -229,21 +228,4 @@ impl Face {
             Face::PosZ => IVec3::Z,
         }
     }
-}
-
-/// The first solid voxel along a ray.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Hit {
-    /// The voxel's position.
-    pub pos: IVec3,
-    /// The face the ray entered through; `None` when the ray starts strictly
-    /// inside the voxel (then `t` is 0).
-    pub face: Option<Face>,
-    /// Distance along the unit direction to the entry point, `>= 0`, never
-    /// `-0.0`, computed as one plane crossing `(plane - origin) * inv_dir`.
-    pub t: f32,
-    /// The voxel's palette index (never 0, which means empty).
-    pub material: u8,
-    /// The voxel itself.
-    pub voxel: Voxel,
 }

@@ -58,79 +58,56 @@ extern crate alloc;
 #[cfg(feature = "std")]
 extern crate std;
 
-#[cfg(feature = "rayon")]
-mod build_par;
-mod camera;
-mod debug_view;
-mod dense;
+// The pipeline, in the order data flows through it: the shared vocabulary
+// at the root, then sources -> storages -> rendering -> output. Later stages
+// import earlier ones, never the reverse (see ARCHITECTURE.md).
 mod error;
-#[cfg(feature = "std")]
-mod framebuffer;
+#[cfg(feature = "alloc")]
+mod fallible;
 mod geom;
 mod math;
-mod noise;
-mod octree;
-mod octree_build;
-mod octree_trace;
-mod options;
-#[cfg(feature = "rayon")]
-mod par_pixels;
-mod render;
-#[cfg(feature = "rayon")]
-mod render_par;
-mod sampling;
 mod scene;
-mod shade;
-mod shader;
-#[cfg(feature = "alloc")]
-mod storage;
-mod terrain;
-#[cfg(feature = "vox")]
-mod vox_model;
-#[cfg(feature = "vox")]
-mod vox_scene;
 mod voxel;
-mod walk;
-
-#[cfg(feature = "png")]
-mod golden;
-#[cfg(feature = "image")]
-mod image_conv;
-#[cfg(feature = "png")]
-mod png_io;
-
-pub use camera::{Camera, CameraSettings, DEFAULT_FOV};
-pub use dense::DenseScene;
-pub use error::Error;
-pub use geom::{Face, Hit, IAabb, Ray, MAX_COORD};
-pub use noise::{Perlin, SplitMix64};
-pub use octree::{Node, OctreeLen, OctreeScene};
-pub use options::{Fog, Occlusion, RenderOptions, DEFAULT_SUN};
-pub use render::{render, render_pixel, render_region, render_span, RayStats, Rect};
-pub use scene::{Scene, Traced};
-pub use shade::{pack, shade, sky, unpack, FLAT_SKY, SKY_HORIZON, SKY_ZENITH};
-pub use terrain::{VoxelGenerator, GRASS, HEIGHT, MOUNTAIN, ROUGHNESS, SCALE, SNOW, WATER};
-pub use voxel::{FnSource, Palette, Region, Voxel, VoxelSource};
-pub use walk::max_steps;
-#[cfg(feature = "vox")]
-pub use {vox_model::VoxModel, vox_scene::VoxError};
 
 #[cfg(feature = "std")]
-pub use framebuffer::Framebuffer;
-#[cfg(feature = "png")]
-pub use golden::{Golden, GoldenError, UPDATE_GOLDEN};
+mod io;
+mod render;
+mod source;
+mod storage;
+
+pub use error::Error;
+pub use geom::{Face, IAabb, Ray, MAX_COORD};
+pub use render::camera::{Camera, CameraSettings, DEFAULT_FOV};
+pub use render::options::{Fog, Occlusion, RenderOptions, DEFAULT_SUN};
+pub use render::scalar::{render, render_pixel, render_region, render_span};
+pub use render::shade::{pack, shade, sky, unpack, FLAT_SKY, SKY_HORIZON, SKY_ZENITH};
+pub use render::stats::{RayStats, Rect};
+pub use scene::{Hit, Scene, Traced};
+pub use source::noise::{Perlin, SplitMix64};
+pub use source::terrain::{VoxelGenerator, GRASS, HEIGHT, MOUNTAIN, ROUGHNESS, SCALE, SNOW, WATER};
+#[cfg(feature = "vox")]
+pub use source::vox::{scene_graph::VoxError, VoxModel};
+pub use storage::dense::DenseScene;
+pub use storage::octree::{Node, OctreeLen, OctreeScene};
+pub use storage::walk::max_steps;
+pub use voxel::{FnSource, Palette, Region, Voxel, VoxelSource};
+
 /// Re-export of the image crate, whose `RgbaImage` frames convert to and
 /// from.
 #[cfg(feature = "image")]
 pub use image;
-#[cfg(feature = "image")]
-pub use image_conv::{from_rgba_image, to_rgba_image};
-#[cfg(feature = "rayon")]
-pub use par_pixels::{ParPixels, PixelRef, Pixels};
 #[cfg(feature = "png")]
-pub use png_io::{decode_png, encode_png, read_png, write_png};
+pub use io::golden::{Golden, GoldenError, UPDATE_GOLDEN};
+#[cfg(feature = "image")]
+pub use io::image::{from_rgba_image, to_rgba_image};
+#[cfg(feature = "png")]
+pub use io::png::{decode_png, encode_png, read_png, write_png};
+#[cfg(feature = "std")]
+pub use render::framebuffer::Framebuffer;
 #[cfg(feature = "rayon")]
-pub use render_par::{render_parallel, render_parallel_with_progress};
+pub use render::parallel::pixels::{ParPixels, PixelRef, Pixels};
+#[cfg(feature = "rayon")]
+pub use render::parallel::{render_parallel, render_parallel_with_progress};
 
 /// Re-export of rayon, whose pools run the parallel render and builds.
 #[cfg(feature = "rayon")]

@@ -1,6 +1,49 @@
-//! The `Scene` trait: what the tracer needs from a storage.
+//! The `Scene` trait: what the tracer needs from a storage, and the `Hit`
+//! every storage returns.
 
-use crate::geom::{Hit, IAabb, Ray};
+use glam::IVec3;
+
+use crate::geom::{Face, IAabb, Ray};
+use crate::voxel::{Palette, Voxel};
+
+/// The first solid voxel along a ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// The voxel's position.
+    pub pos: IVec3,
+    /// The face the ray entered through; `None` when the ray starts strictly
+    /// inside the voxel (then `t` is 0).
+    pub face: Option<Face>,
+    /// Distance along the unit direction to the entry point, `>= 0`, never
+    /// `-0.0`, computed as one plane crossing `(plane - origin) * inv_dir`.
+    pub t: f32,
+    /// The voxel's palette index (never 0, which means empty).
+    pub material: u8,
+    /// The voxel itself.
+    pub voxel: Voxel,
+}
+
+impl Hit {
+    /// The hit on the voxel of palette index `material` at `pos`, or `None`
+    /// when the palette has no such entry (every storage builds its hits
+    /// here, so they agree on what a material means).
+    #[inline]
+    pub(crate) fn from_palette(
+        palette: &Palette,
+        pos: IVec3,
+        face: Option<Face>,
+        t: f32,
+        material: u8,
+    ) -> Option<Hit> {
+        palette.voxel(material).map(|voxel| Hit {
+            pos,
+            face,
+            t,
+            material,
+            voxel,
+        })
+    }
+}
 
 /// A hit (or miss) together with the number of walk moves it took.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -6,6 +6,4 @@
 
 mod pipeline;
 
-pub use pipeline::{
-    above_position, framing, on_threads, paper_position, Backend, BuiltScene, Rendered,
-};
+pub use pipeline::{framing, on_threads, Backend, BuiltScene, Rendered};

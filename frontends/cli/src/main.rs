@@ -17,7 +17,7 @@ use voxtrace::glam::Vec3;
 use voxtrace::{
     Camera, CameraSettings, Fog, IAabb, Occlusion, Rect, RenderOptions, VoxModel, VoxelGenerator,
 };
-use voxtrace_cli::{framing, on_threads, paper_position, BuiltScene};
+use voxtrace_cli::{framing, on_threads, BuiltScene};
 
 use args::Args;
 use progress::Progress;
@@ -84,7 +84,8 @@ fn run(args: &Args) -> Result<(), String> {
     let (bounds, position, lookat) = match &subject {
         Subject::Terrain { .. } => (
             IAabb::centered(args.size),
-            args.position.unwrap_or(paper_position(args.size)),
+            args.position
+                .unwrap_or(CameraSettings::paper(args.size).lookfrom),
             args.lookat.unwrap_or(Vec3::ZERO),
         ),
         Subject::Model(model) => {

@@ -218,23 +218,6 @@ fn render<S: Scene + Sync>(
     })
 }
 
-/// The seed paper's camera position for scene `size`: `size - 10` on every
-/// axis (the CLI's default `--position`), looking at the origin.
-#[must_use]
-pub fn paper_position(size: i32) -> Vec3 {
-    Vec3::splat((size - 10) as f32)
-}
-
-/// A camera position above the terrain and outside the volume for scene
-/// `size`, looking down at the origin: a view with terrain in it at every
-/// size (the paper's camera sits inside solid ground at size 50 for many
-/// seeds). The benches use the same formula.
-#[must_use]
-pub fn above_position(size: i32) -> Vec3 {
-    let n = size as f32;
-    Vec3::new(0.6 * n, n + 120.0, 1.2 * n)
-}
-
 /// A camera position and target that frame `bounds` from a three-quarter
 /// view above: every corner of the box inside the field of view (vertical
 /// `vertical_fov` degrees, width over height `aspect`), with a small margin.

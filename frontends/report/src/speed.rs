@@ -3,7 +3,7 @@
 //! and a plot of render time and memory against scene size.
 
 use voxtrace::{Camera, CameraSettings, Rect, RenderOptions, VoxelGenerator};
-use voxtrace_cli::{above_position, on_threads, paper_position, Backend, BuiltScene};
+use voxtrace_cli::{on_threads, Backend, BuiltScene};
 
 use crate::common_args::Output;
 use crate::measure::{format_ms, median_of};
@@ -179,15 +179,14 @@ fn measure_one(
 }
 
 fn camera(size: i32, (width, height): (u32, u32), view: View) -> Result<Camera, String> {
-    let lookfrom = match view {
-        View::Paper => paper_position(size),
-        View::Above => above_position(size),
+    let view = match view {
+        View::Paper => CameraSettings::paper(size),
+        View::Above => CameraSettings::above(size),
     };
     Camera::new(CameraSettings {
         width,
         height,
-        lookfrom,
-        ..CameraSettings::default()
+        ..view
     })
     .map_err(|e| e.to_string())
 }

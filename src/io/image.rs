@@ -6,8 +6,8 @@ use std::vec::Vec;
 
 use image::RgbaImage;
 
-use crate::framebuffer::Framebuffer;
-use crate::Error;
+use crate::error::Error;
+use crate::render::framebuffer::Framebuffer;
 
 /// `width x height` packed pixels (see [`crate::pack`]) as an `RgbaImage`;
 /// `None` when `pixels` is shorter than the image. Allocates the image.

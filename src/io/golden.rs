@@ -17,8 +17,8 @@ use std::path::{Path, PathBuf};
 use std::string::String;
 use std::vec::Vec;
 
-use crate::png_io::{read_png, write_png};
-use crate::shade::{pack, unpack};
+use crate::io::png::{read_png, write_png};
+use crate::render::shade::{pack, unpack};
 
 /// The environment variable that turns checks into updates: set to anything
 /// but `0` or the empty string, [`Golden::check`] writes the golden instead
@@ -227,7 +227,10 @@ impl Golden {
     }
 
     /// [`Golden::check`] for a framebuffer.
-    pub fn check_frame(&self, frame: &crate::Framebuffer) -> Result<(), GoldenError> {
+    pub fn check_frame(
+        &self,
+        frame: &crate::render::framebuffer::Framebuffer,
+    ) -> Result<(), GoldenError> {
         self.check(frame.width(), frame.height(), &frame.to_vec())
     }
 }

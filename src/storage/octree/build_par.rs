@@ -1,42 +1,18 @@
-//! Building both storages on the rayon pool (feature `rayon`), with exactly
-//! the result of the sequential builds: the same bytes, the same nodes in
-//! the same order.
+//! Building the octree on the rayon pool (feature `rayon`), with exactly
+//! the result of the sequential build: the same nodes in the same order.
 
 use glam::IVec3;
 use rayon::prelude::*;
 use std::vec::Vec;
 
-use crate::dense::DenseScene;
+use crate::error::Error;
+use crate::fallible::try_grow;
 use crate::geom::IAabb;
-use crate::octree::{BrickMaterials, Node, NodeKind, OctreeScene};
-use crate::octree_build::{child_offset, push_vec, root_size, shortcut, Builder, Cube, VecSink};
-use crate::storage::try_grow;
+use crate::storage::octree::build::{
+    child_offset, octants, push_vec, root_size, shortcut, Builder, Cube, VecSink,
+};
+use crate::storage::octree::{BrickMaterials, Node, NodeKind, OctreeScene};
 use crate::voxel::VoxelSource;
-use crate::Error;
-
-impl DenseScene<Vec<u8>> {
-    /// [`DenseScene::build`] on the current rayon pool: one task per z-slice
-    /// of the volume, each filled by the source. Same bytes as `build`.
-    pub fn build_parallel<S: VoxelSource + Sync + ?Sized>(
-        source: &S,
-        bounds: IAabb,
-    ) -> Result<Self, Error> {
-        DenseScene::build_with(source, bounds, |cells| {
-            // In usize: the bounds are validated, and one slice is at most
-            // the volume, which fits, while x * y may not fit in i32.
-            let size = bounds.size().as_uvec3();
-            let slice_len = size.x as usize * size.y as usize;
-            cells
-                .par_chunks_mut(slice_len)
-                .zip(bounds.min.z..bounds.max.z)
-                .for_each(|(slice, z)| {
-                    let min = IVec3::new(bounds.min.x, bounds.min.y, z);
-                    let max = IVec3::new(bounds.max.x, bounds.max.y, z + 1);
-                    source.fill_box(IAabb::new(min, max), slice);
-                });
-        })
-    }
-}
 
 /// Side of the cubes handed to one task. 64^3 voxels are a few milliseconds
 /// of work: enough tasks to balance two to sixteen threads on a terrain,
@@ -126,11 +102,9 @@ fn assemble<S: VoxelSource + ?Sized>(
             .expect("collect_tasks made one part for each cube assemble reaches")?;
         return append(&mut builder.sink, root, part);
     }
-    let half = size / 2;
-    let mut children = [None; 8];
-    for (i, child) in children.iter_mut().enumerate() {
-        *child = assemble(builder, parts, corner + child_offset(i) * half, half)?;
-    }
+    let children = octants(corner, size, |corner, half| {
+        assemble(builder, parts, corner, half)
+    })?;
     builder.combine(&children)
 }
 

@@ -3,8 +3,9 @@
 
 use glam::{U8Vec3, UVec3, Vec3};
 
-use crate::geom::{Face, Hit, Ray};
-use crate::options::RenderOptions;
+use crate::geom::{Face, Ray};
+use crate::render::options::RenderOptions;
+use crate::scene::Hit;
 
 /// The sky of `--flat` renders: one constant color.
 pub const FLAT_SKY: U8Vec3 = U8Vec3::new(135, 190, 235);

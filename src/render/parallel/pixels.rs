@@ -8,7 +8,7 @@ use core::sync::atomic::{AtomicU32, Ordering};
 use rayon::iter::plumbing::{bridge, Consumer, Producer, ProducerCallback, UnindexedConsumer};
 use rayon::iter::{IndexedParallelIterator, ParallelIterator};
 
-use crate::framebuffer::Framebuffer;
+use crate::render::framebuffer::Framebuffer;
 
 /// One pixel of a [`Framebuffer`]: its coordinates and the pixel itself.
 #[derive(Clone, Copy, Debug)]

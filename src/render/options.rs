@@ -2,7 +2,7 @@
 
 use glam::Vec3;
 
-use crate::Error;
+use crate::error::Error;
 
 /// The default sun: high, from +x and slightly from -z, so that tops are
 /// brightest and the two lit sides read apart (the seed paper's Fig. 1 look).

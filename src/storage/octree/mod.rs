@@ -2,15 +2,22 @@
 //! and address their children by `u32` index; leaves are 4x4x4 bricks held as
 //! one 64-bit occupancy mask.
 //!
-//! The traversal (`octree_trace.rs`) is the shared cell walk (see
-//! `walk.rs`), which the octree speeds up by jumping over every empty node in
-//! one move. Because a jump lands exactly where single steps would, the
-//! octree returns the same hits as the dense array, bit for bit.
+//! The node layout lives here; [`build`] fills it from a source (in caller
+//! buffers or fallible vectors, and on the rayon pool in [`build_par`]), and
+//! [`trace`] walks it: the shared cell walk (see `storage/walk.rs`), sped up
+//! by jumping over every empty node in one move. Because a jump lands
+//! exactly where single steps would, the octree returns the same hits as the
+//! dense array, bit for bit.
 
 use glam::IVec3;
 
 use crate::geom::IAabb;
 use crate::voxel::Palette;
+
+pub(crate) mod build;
+#[cfg(feature = "rayon")]
+pub(crate) mod build_par;
+pub(crate) mod trace;
 
 /// Side of a leaf brick: 4x4x4 voxels, one `u64` of occupancy.
 pub(crate) const BRICK: i32 = 4;

@@ -4,7 +4,7 @@
 use glam::{IVec3, U8Vec3};
 
 use crate::geom::IAabb;
-use crate::noise::Perlin;
+use crate::source::noise::Perlin;
 use crate::voxel::{Palette, Region, Voxel, VoxelSource};
 
 /// Maximum terrain height in voxels (the seed paper's height limit of 100).

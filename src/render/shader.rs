@@ -9,14 +9,15 @@
 
 use glam::{U8Vec3, UVec3, Vec3};
 
-use crate::camera::Camera;
-use crate::debug_view::{box_color, enters_near_edge};
-use crate::geom::{Face, Hit, Ray};
-use crate::options::RenderOptions;
-use crate::render::RayStats;
-use crate::sampling::{cosine_hemisphere, pixel_key, r2};
+use crate::geom::{Face, Ray};
+use crate::render::camera::Camera;
+use crate::render::debug_view::{box_color, enters_near_edge};
+use crate::render::options::RenderOptions;
+use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
+use crate::render::shade::{face_index, face_weights, fog_blend, lit, pack, sky, FLAT_SKY};
+use crate::render::stats::RayStats;
+use crate::scene::Hit;
 use crate::scene::Scene;
-use crate::shade::{face_index, face_weights, fog_blend, lit, pack, sky, FLAT_SKY};
 
 /// How wide the debug view's edges are: a fraction of a pixel's footprint
 /// each side of the edge.

@@ -7,7 +7,7 @@
 use core::sync::atomic::{AtomicU32, Ordering};
 use std::vec::Vec;
 
-use crate::Error;
+use crate::error::Error;
 
 /// A `width x height` image of atomic RGBA8 pixels.
 ///
@@ -34,7 +34,7 @@ impl Framebuffer {
         let len = (width as usize)
             .checked_mul(height as usize)
             .ok_or(Error::SizeOverflow)?;
-        let mut pixels = crate::storage::try_vec::<AtomicU32>(len)?;
+        let mut pixels = crate::fallible::try_vec::<AtomicU32>(len)?;
         pixels.resize_with(len, || AtomicU32::new(0));
         Ok(Framebuffer {
             width,
@@ -115,16 +115,5 @@ impl Framebuffer {
     pub fn into_pixels(self) -> Vec<u32> {
         // Same size and alignment: the standard library collects in place.
         self.pixels.into_iter().map(AtomicU32::into_inner).collect()
-    }
-
-    /// Encodes the image as a PNG into `writer` (feature `png`).
-    #[cfg(feature = "png")]
-    pub fn encode_png<W: std::io::Write>(&self, writer: W) -> Result<(), png::EncodingError> {
-        let bytes: Vec<u8> = self
-            .pixels
-            .iter()
-            .flat_map(|p| p.load(Ordering::Relaxed).to_ne_bytes())
-            .collect();
-        crate::png_io::encode_rgba8(writer, self.width, self.height, &bytes)
     }
 }

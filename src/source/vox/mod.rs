@@ -10,7 +10,9 @@ use std::vec::Vec;
 use glam::{IVec3, U8Vec3};
 
 use crate::geom::{IAabb, MAX_COORD};
-use crate::vox_scene::{placements, Placement, VoxError};
+use crate::source::vox::scene_graph::{placements, Placement, VoxError};
+
+pub(crate) mod scene_graph;
 use crate::voxel::{Palette, Region, VoxelSource};
 
 /// The most voxels a scene may place (instances count each time): 2^28,

@@ -8,12 +8,12 @@
 
 use glam::IVec3;
 
+use crate::error::Error;
 use crate::geom::IAabb;
-use crate::octree::{
+use crate::storage::octree::{
     brick_bit, occupied_box, BrickMaterials, Node, NodeKind, OctreeLen, OctreeScene, BRICK,
 };
 use crate::voxel::{Region, VoxelSource};
-use crate::Error;
 
 /// Side of the tiles the builder fills from the source in one call.
 const TILE: i32 = 16;
@@ -90,7 +90,7 @@ pub(crate) struct VecSink {
 #[cfg(feature = "alloc")]
 pub(crate) fn push_vec<T: Copy>(dst: &mut alloc::vec::Vec<T>, src: &[T]) -> Result<u32, Error> {
     let first = index_u32(dst.len())?;
-    crate::storage::try_grow(dst, src.len())?;
+    crate::fallible::try_grow(dst, src.len())?;
     dst.extend_from_slice(src);
     Ok(first)
 }
@@ -178,11 +178,7 @@ impl<'s, S: VoxelSource + ?Sized, K: Sink> Builder<'s, S, K> {
             self.source.fill_box(region, &mut self.tile[..volume]);
             return self.tile_node(corner, size);
         }
-        let half = size / 2;
-        let mut children = [None; 8];
-        for (i, child) in children.iter_mut().enumerate() {
-            *child = self.node(corner + child_offset(i) * half, half)?;
-        }
+        let children = octants(corner, size, |corner, half| self.node(corner, half))?;
         self.combine(&children)
     }
 
@@ -191,11 +187,7 @@ impl<'s, S: VoxelSource + ?Sized, K: Sink> Builder<'s, S, K> {
         if size == BRICK {
             return self.brick(corner);
         }
-        let half = size / 2;
-        let mut children = [None; 8];
-        for (i, child) in children.iter_mut().enumerate() {
-            *child = self.tile_node(corner + child_offset(i) * half, half)?;
-        }
+        let children = octants(corner, size, |corner, half| self.tile_node(corner, half))?;
         self.combine(&children)
     }
 
@@ -289,6 +281,23 @@ impl<'s, S: VoxelSource + ?Sized, K: Sink> Builder<'s, S, K> {
 /// Offset of child octant `i` (`x | y << 1 | z << 2`) in units of half a side.
 pub(crate) fn child_offset(i: usize) -> IVec3 {
     IVec3::new((i & 1) as i32, ((i >> 1) & 1) as i32, ((i >> 2) & 1) as i32)
+}
+
+/// Builds the eight children of the cube `[corner, corner + size)` in octant
+/// order with `child(child_corner, half_size)`, stopping at the first error.
+/// Every builder (sequential, in a tile, parallel assembly) recurses through
+/// here, so all of them order the children the same way.
+pub(crate) fn octants(
+    corner: IVec3,
+    size: i32,
+    mut child: impl FnMut(IVec3, i32) -> Result<Option<Node>, Error>,
+) -> Result<[Option<Node>; 8], Error> {
+    let half = size / 2;
+    let mut children = [None; 8];
+    for (i, slot) in children.iter_mut().enumerate() {
+        *slot = child(corner + child_offset(i) * half, half)?;
+    }
+    Ok(children)
 }
 
 /// Runs the builder over `bounds` into `sink`; returns the root and the sink.

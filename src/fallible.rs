@@ -2,7 +2,7 @@
 
 use alloc::vec::Vec;
 
-use crate::Error;
+use crate::error::Error;
 
 /// An empty vector with room for `len` elements, reserved with
 /// `try_reserve_exact`: a refused allocation is [`Error::OutOfMemory`]

@@ -3,11 +3,11 @@
 
 use glam::IVec3;
 
-use crate::geom::{Hit, IAabb, Ray};
-use crate::scene::{Scene, Traced};
+use crate::error::Error;
+use crate::geom::{IAabb, Ray};
+use crate::scene::{Hit, Scene, Traced};
+use crate::storage::walk::Walk;
 use crate::voxel::{Palette, VoxelSource};
-use crate::walk::Walk;
-use crate::Error;
 
 /// A dense voxel volume: one material byte per position of its bounds.
 ///
@@ -98,7 +98,7 @@ impl DenseScene<alloc::vec::Vec<u8>> {
         fill: impl FnOnce(&mut [u8]),
     ) -> Result<Self, Error> {
         let len = DenseScene::required_len(bounds)?;
-        let mut cells = crate::storage::try_vec::<u8>(len)?;
+        let mut cells = crate::fallible::try_vec::<u8>(len)?;
         cells.resize(len, 0);
         fill(&mut cells);
         Ok(Self::from_parts(bounds, cells, source.palette().clone()))
@@ -149,13 +149,7 @@ impl<B: AsRef<[u8]>> DenseScene<B> {
             let material = cells[self.index(pos)];
             if material != 0 {
                 let (face, t) = walk.entry();
-                let hit = self.palette.voxel(material).map(|voxel| Hit {
-                    pos,
-                    face,
-                    t,
-                    material,
-                    voxel,
-                });
+                let hit = Hit::from_palette(&self.palette, pos, face, t, material);
                 return Traced {
                     hit,
                     steps: walk.steps(),
@@ -195,5 +189,31 @@ impl<B: AsRef<[u8]>> Scene for DenseScene<B> {
 
     fn storage_bytes(&self) -> usize {
         self.cells.as_ref().len() + core::mem::size_of::<Palette>()
+    }
+}
+
+#[cfg(feature = "rayon")]
+impl DenseScene<alloc::vec::Vec<u8>> {
+    /// [`DenseScene::build`] on the current rayon pool: one task per z-slice
+    /// of the volume, each filled by the source. Same bytes as `build`.
+    pub fn build_parallel<S: VoxelSource + Sync + ?Sized>(
+        source: &S,
+        bounds: IAabb,
+    ) -> Result<Self, Error> {
+        use rayon::prelude::*;
+        DenseScene::build_with(source, bounds, |cells| {
+            // In usize: the bounds are validated, and one slice is at most
+            // the volume, which fits, while x * y may not fit in i32.
+            let size = bounds.size().as_uvec3();
+            let slice_len = size.x as usize * size.y as usize;
+            cells
+                .par_chunks_mut(slice_len)
+                .zip(bounds.min.z..bounds.max.z)
+                .for_each(|(slice, z)| {
+                    let min = IVec3::new(bounds.min.x, bounds.min.y, z);
+                    let max = IVec3::new(bounds.max.x, bounds.max.y, z + 1);
+                    source.fill_box(IAabb::new(min, max), slice);
+                });
+        })
     }
 }

@@ -2,15 +2,17 @@
 //! kernel over the framebuffer's parallel pixel iterator, one row per unit
 //! of work.
 
+pub(crate) mod pixels;
+
 use rayon::iter::{IndexedParallelIterator, ParallelIterator};
 
-use crate::camera::Camera;
-use crate::framebuffer::Framebuffer;
-use crate::options::RenderOptions;
-use crate::render::{RayStats, Rect};
+use crate::error::Error;
+use crate::render::camera::Camera;
+use crate::render::framebuffer::Framebuffer;
+use crate::render::options::RenderOptions;
+use crate::render::shader::{FrameJob, Kernel, Shader};
+use crate::render::stats::{RayStats, Rect};
 use crate::scene::Scene;
-use crate::shader::{FrameJob, Kernel, Shader};
-use crate::Error;
 
 /// Renders the crop `region` of `camera`'s frame into `frame` on the current
 /// rayon pool: pixel `(x, y)` of `frame` is pixel `(region.x + x,

@@ -1,7 +1,10 @@
 //! PNG encoding and decoding of packed pixels (feature `png`).
 
+use core::sync::atomic::Ordering;
 use std::io::Write;
 use std::vec::Vec;
+
+use crate::render::framebuffer::Framebuffer;
 
 /// Encodes `width x height` packed RGBA8 pixels (see [`crate::pack`]) as a
 /// PNG into `writer`. Fails if `pixels` is shorter than the image.
@@ -81,4 +84,16 @@ pub fn decode_png<R: std::io::BufRead + std::io::Seek>(
 pub fn read_png(path: &std::path::Path) -> Result<(u32, u32, Vec<u32>), png::DecodingError> {
     let file = std::fs::File::open(path)?;
     decode_png(std::io::BufReader::new(file))
+}
+
+impl Framebuffer {
+    /// Encodes the image as a PNG into `writer` (feature `png`).
+    pub fn encode_png<W: Write>(&self, writer: W) -> Result<(), png::EncodingError> {
+        let bytes: Vec<u8> = self
+            .pixels()
+            .iter()
+            .flat_map(|p| p.load(Ordering::Relaxed).to_ne_bytes())
+            .collect();
+        encode_rgba8(writer, self.width(), self.height(), &bytes)
+    }
 }

@@ -16,10 +16,10 @@
 
 use glam::IVec3;
 
-use crate::geom::{Hit, IAabb, Ray, MAX_COORD};
-use crate::octree::{brick_bit, BrickMaterials, Node, NodeKind, OctreeScene};
-use crate::scene::{Scene, Traced};
-use crate::walk::{Key, Walk};
+use crate::geom::{IAabb, Ray, MAX_COORD};
+use crate::scene::{Hit, Scene, Traced};
+use crate::storage::octree::{brick_bit, BrickMaterials, Node, NodeKind, OctreeScene};
+use crate::storage::walk::{Key, Walk};
 
 /// Entries of the path: the largest root has side `2 * MAX_COORD` = 2^23,
 /// and halving it down to side-4 bricks takes depths 0 to 21.
@@ -206,13 +206,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
 
     fn hit(&self, walk: &Walk, key: Key, pos: IVec3, material: u8, steps: u32) -> Traced {
         let (face, t) = walk.entry_at(key);
-        let hit = self.palette.voxel(material).map(|voxel| Hit {
-            pos,
-            face,
-            t,
-            material,
-            voxel,
-        });
+        let hit = Hit::from_palette(&self.palette, pos, face, t, material);
         Traced { hit, steps }
     }
 }

@@ -1,0 +1,26 @@
+//! What a frame is: the third stage, from camera to packed pixels.
+//!
+//! A [`camera`] turns pixels into rays; [`options`] say which effects the
+//! frame simulates; [`shader`] picks, once per frame, a pixel kernel compiled
+//! for exactly those effects (over the shading math of [`shade`], the sample
+//! patterns of [`sampling`] and the seed paper's [`debug_view`]); the
+//! [`scalar`] renderer runs it over rows, crops or whole frames into a
+//! caller's `&mut [u32]`, counting rays in [`stats`].
+//!
+//! One function, `render_pixel`, defines every pixel, so the scalar render,
+//! any crop, and the threaded render over the atomic [`framebuffer`]
+//! (feature `std`) with its parallel pixel iterator ([`parallel`], feature
+//! `rayon`) are byte-identical. The kernels allocate nothing.
+
+pub(crate) mod camera;
+pub(crate) mod debug_view;
+#[cfg(feature = "std")]
+pub(crate) mod framebuffer;
+pub(crate) mod options;
+#[cfg(feature = "rayon")]
+pub(crate) mod parallel;
+pub(crate) mod sampling;
+pub(crate) mod scalar;
+pub(crate) mod shade;
+pub(crate) mod shader;
+pub(crate) mod stats;
