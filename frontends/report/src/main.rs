@@ -9,6 +9,7 @@ mod common_args;
 mod measure;
 mod plot;
 mod speed;
+mod speed_data;
 mod speed_tables;
 mod surface;
 

@@ -8,7 +8,7 @@ use voxtrace_cli::Backend;
 
 use crate::measure::{cpu_name, format_bytes, format_ms};
 use crate::plot::{Chart, Line, Series};
-use crate::speed::{
+use crate::speed_data::{
     Measured, View, FULL_HD, PAPER_CORES, PAPER_MS, SCALING_SIZES, TABLE_SIZES, UHD_8K,
 };
 
