@@ -11,7 +11,6 @@
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use voxtrace::glam::Vec3;
 use voxtrace::{
     render_parallel, Camera, CameraSettings, DenseScene, Framebuffer, IAabb, OctreeScene, Rect,
     RenderOptions, Scene, VoxelGenerator,
