@@ -3,7 +3,7 @@
 
 use glam::IVec3;
 
-use crate::geom::{Face, IAabb, Ray};
+use crate::geom::{Cone, Face, IAabb, Ray};
 use crate::voxel::{Palette, Voxel};
 
 /// The first solid voxel along a ray.
@@ -75,6 +75,26 @@ pub trait Scene {
     /// returns `false` the walk stops there and reports no hit.
     fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced;
 
+    /// A distance before which no ray from the cone's apex inside `cone`
+    /// hits a voxel: every such ray's hit, if any, has `t >= ` the answer.
+    /// What lets a tile of primary rays skip the empty space they share.
+    /// The default knows nothing and answers 0.
+    #[inline]
+    fn clear_distance(&self, cone: &Cone) -> f32 {
+        let _ = cone;
+        0.0
+    }
+
+    /// [`Scene::trace_counted`] for a ray known to hit nothing before
+    /// `t_start` (from [`Scene::clear_distance`]): the same hit, bit for
+    /// bit, but the walk may begin at `t_start` (the move count then counts
+    /// only the moves made). The default walks from the start.
+    #[inline]
+    fn trace_from(&self, ray: &Ray, t_start: f32) -> Traced {
+        let _ = t_start;
+        self.trace_counted(ray)
+    }
+
     /// The first solid voxel along `ray`.
     #[inline]
     fn trace(&self, ray: &Ray) -> Option<Hit> {
@@ -109,6 +129,14 @@ impl<S: Scene + ?Sized> Scene for &S {
 
     fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         (**self).trace_within(ray, t_max)
+    }
+
+    fn clear_distance(&self, cone: &Cone) -> f32 {
+        (**self).clear_distance(cone)
+    }
+
+    fn trace_from(&self, ray: &Ray, t_start: f32) -> Traced {
+        (**self).trace_from(ray, t_start)
     }
 
     fn storage_bytes(&self) -> usize {

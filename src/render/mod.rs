@@ -24,3 +24,4 @@ pub(crate) mod scalar;
 pub(crate) mod shade;
 pub(crate) mod shader;
 pub(crate) mod stats;
+pub(crate) mod tiles;

@@ -9,6 +9,7 @@ use crate::render::camera::Camera;
 use crate::render::options::RenderOptions;
 use crate::render::shader::{FrameJob, Kernel, Shader};
 use crate::render::stats::{RayStats, Rect};
+use crate::render::tiles::render_tiles;
 use crate::scene::Scene;
 
 /// Renders pixel `(x, y)` of `camera`'s frame: its packed color and the rays
@@ -30,7 +31,7 @@ pub fn render_pixel<S: Scene + ?Sized>(
     impl<S: Scene + ?Sized> FrameJob for Pixel<'_, S> {
         type Output = (u32, RayStats);
         fn run<K: Kernel>(self, kernel: &K) -> (u32, RayStats) {
-            kernel.pixel(self.scene, self.x, self.y)
+            kernel.pixel(self.scene, self.x, self.y, 0.0)
         }
     }
     Shader::new(options, camera).dispatch(Pixel { scene, x, y })
@@ -49,36 +50,45 @@ pub fn render_span<S: Scene + ?Sized>(
     y: u32,
     out: &mut [u32],
 ) -> RayStats {
-    Shader::new(options, camera).dispatch(Rows {
+    let rect = Rect {
+        x: x0,
+        y,
+        width: u32::try_from(out.len()).unwrap_or(u32::MAX),
+        height: 1,
+    };
+    Shader::new(options, camera).dispatch(Tiles {
         scene,
-        x0,
-        y0: y,
-        width: out.len().max(1),
+        camera,
+        rect,
         out,
     })
 }
 
-/// Rows of pixels `(x0.., y0..)`, `width` to a row, into `out`.
-struct Rows<'a, S: ?Sized> {
+/// The pixels of `rect` in tiles, into `out` (row-major, stride
+/// `rect.width`).
+struct Tiles<'a, S: ?Sized> {
     scene: &'a S,
-    x0: u32,
-    y0: u32,
-    width: usize,
+    camera: &'a Camera,
+    rect: Rect,
     out: &'a mut [u32],
 }
 
-impl<S: Scene + ?Sized> FrameJob for Rows<'_, S> {
+impl<S: Scene + ?Sized> FrameJob for Tiles<'_, S> {
     type Output = RayStats;
     fn run<K: Kernel>(self, kernel: &K) -> RayStats {
-        let mut stats = RayStats::default();
-        for (y, row) in (self.y0..).zip(self.out.chunks_mut(self.width)) {
-            for (x, pixel) in (self.x0..).zip(row.iter_mut()) {
-                let (rgba, rays) = kernel.pixel(self.scene, x, y);
+        let Tiles {
+            scene,
+            camera,
+            rect,
+            out,
+        } = self;
+        let stride = rect.width as usize;
+        render_tiles(kernel, scene, camera, rect, |x, y, rgba| {
+            let i = (y - rect.y) as usize * stride + (x - rect.x) as usize;
+            if let Some(pixel) = out.get_mut(i) {
                 *pixel = rgba;
-                stats += rays;
             }
-        }
-        stats
+        })
     }
 }
 
@@ -103,11 +113,10 @@ pub fn render_region<S: Scene + ?Sized>(
             actual: out.len(),
         });
     }
-    Ok(Shader::new(options, camera).dispatch(Rows {
+    Ok(Shader::new(options, camera).dispatch(Tiles {
         scene,
-        x0: region.x,
-        y0: region.y,
-        width: region.width as usize,
+        camera,
+        rect: region,
         out: &mut out[..required],
     }))
 }

@@ -111,7 +111,16 @@ pub(crate) trait FrameJob {
 /// Computes pixels with one fixed set of effects.
 pub(crate) trait Kernel: Sync {
     /// Pixel `(x, y)` of the frame: packed color and the rays it traced.
-    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32) -> (u32, RayStats);
+    /// Its primary rays hit nothing before `t_start` (0 when unknown), so
+    /// they may start walking there; the pixel is the same for any such
+    /// `t_start`.
+    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32, t_start: f32) -> (u32, RayStats);
+
+    /// Whether the kernel's primary rays use a tile's clear distance (the
+    /// debug view walks from the camera to show every box).
+    fn uses_beam(&self) -> bool {
+        true
+    }
 }
 
 /// Rays counted for one primary ray and its hit.
@@ -128,9 +137,9 @@ struct Flat<'s, 'c>(&'s Shader<'c>);
 
 impl Kernel for Flat<'_, '_> {
     #[inline]
-    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32) -> (u32, RayStats) {
+    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32, t_start: f32) -> (u32, RayStats) {
         let ray = self.0.camera.get_ray(x, y);
-        let hit = scene.trace(&ray);
+        let hit = scene.trace_from(&ray, t_start).hit;
         let color = hit.map_or(FLAT_SKY, |h| h.voxel.color);
         (pack(color), primary(hit.as_ref()))
     }
@@ -140,7 +149,7 @@ impl Kernel for Flat<'_, '_> {
 struct DebugView<'s, 'c>(&'s Shader<'c>);
 
 impl Kernel for DebugView<'_, '_> {
-    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32) -> (u32, RayStats) {
+    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32, _: f32) -> (u32, RayStats) {
         let ray = self.0.camera.get_ray(x, y);
         let mut edge = None;
         let traced = scene.trace_visiting(&ray, &mut |cube| {
@@ -157,6 +166,10 @@ impl Kernel for DebugView<'_, '_> {
         // A ray stopped at an edge still counts as one primary ray.
         (pack(color), primary(traced.hit.as_ref()))
     }
+
+    fn uses_beam(&self) -> bool {
+        false
+    }
 }
 
 /// The lit look with the chosen effects: shadows, ambient occlusion, fog and
@@ -169,10 +182,11 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kerne
     for Lit<'_, '_, SHADOWS, AO, FOG, AA>
 {
     #[inline]
-    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32) -> (u32, RayStats) {
+    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32, t_start: f32) -> (u32, RayStats) {
         let camera = self.0.camera;
         if !AA {
-            let (color, stats) = self.sample(scene, &camera.get_ray(x, y), x, y, 0);
+            let ray = camera.get_ray(x, y);
+            let (color, stats) = self.sample(scene, &ray, t_start, x, y, 0);
             return (pack(color), stats);
         }
         let samples = u32::from(self.0.options.samples);
@@ -182,7 +196,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kerne
         for s in 0..samples {
             let offset = r2(s, key);
             let ray = camera.get_ray_at(x as f32 + offset.x, y as f32 + offset.y);
-            let (color, rays) = self.sample(scene, &ray, x, y, s);
+            let (color, rays) = self.sample(scene, &ray, t_start, x, y, s);
             sum += color.as_uvec3();
             stats += rays;
         }
@@ -195,18 +209,20 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kerne
 impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
     Lit<'_, '_, SHADOWS, AO, FOG, AA>
 {
-    /// One camera sample: its color and rays.
+    /// One camera sample, its walk starting at `t_start`: its color and
+    /// rays.
     #[inline]
     fn sample<S: Scene + ?Sized>(
         &self,
         scene: &S,
         ray: &Ray,
+        t_start: f32,
         x: u32,
         y: u32,
         sample: u32,
     ) -> (U8Vec3, RayStats) {
         let shader = self.0;
-        let hit = scene.trace(ray);
+        let hit = scene.trace_from(ray, t_start).hit;
         let mut stats = primary(hit.as_ref());
         let Some(hit) = hit else {
             return (sky(ray.dir()), stats);

@@ -123,6 +123,34 @@ impl Walk {
     /// 2005 in key form: the ray is inside once it has crossed the near plane
     /// of every axis, and misses if it crosses a far plane first.
     pub(crate) fn start(ray: &Ray, bounds: &IAabb) -> Option<Walk> {
+        Walk::begin(ray, bounds, Key::BEFORE)
+    }
+
+    /// [`Walk::start`], but placed where the ray is at the key `(t_start,
+    /// x)` if it enters the volume before that: in the cell reached after
+    /// every crossing strictly before that key, entered by the latest of
+    /// its per-axis entry crossings, as single steps would leave it. `None`
+    /// when the ray has left the volume by then. Walking on from there finds
+    /// the same hit as walking from the start, provided no solid cell is
+    /// entered before `t_start`.
+    pub(crate) fn start_from(ray: &Ray, bounds: &IAabb, t_start: f32) -> Option<Walk> {
+        if t_start == f32::INFINITY {
+            return None;
+        }
+        // At 0 or before, the start is already where the ray is.
+        let not_before = if t_start > 0.0 {
+            Key {
+                t: t_start,
+                axis: 0,
+            }
+        } else {
+            Key::BEFORE
+        };
+        Walk::begin(ray, bounds, not_before)
+    }
+
+    /// The walk in its first cell inside `bounds` at or after `not_before`.
+    fn begin(ray: &Ray, bounds: &IAabb, not_before: Key) -> Option<Walk> {
         let (origin, dir, inv_dir) = (ray.origin(), ray.dir(), ray.inv_dir());
         let mut step = IVec3::ZERO;
         let mut start = IVec3::ZERO;
@@ -172,12 +200,14 @@ impl Walk {
             up: step.cmpgt(IVec3::ZERO),
             moving: step.cmpne(IVec3::ZERO),
         };
-        walk.enter()?;
+        walk.enter(not_before)?;
         Some(walk)
     }
 
-    /// Moves the walk from its start cell to the first cell inside the volume.
-    fn enter(&mut self) -> Option<()> {
+    /// Moves the walk from its start cell to the first cell inside the
+    /// volume, or to the cell the ray is in at `not_before` if it enters
+    /// earlier.
+    fn enter(&mut self, not_before: Key) -> Option<()> {
         // The key of entering the volume: the latest of the per-axis entries.
         let mut key_in = Key::BEFORE;
         let mut entry_axis = None;
@@ -200,6 +230,9 @@ impl Walk {
         }
         if key_in.t == f32::INFINITY {
             return None;
+        }
+        if key_in.lt(not_before) {
+            return self.settle_all(not_before);
         }
         // Only a near-plane crossing moves a cell; start keys do not.
         let entry_axis = entry_axis.filter(|&a| !(self.lo[a]..self.hi[a]).contains(&self.start[a]));
@@ -225,6 +258,39 @@ impl Walk {
             }
         }
         self.key = key_in;
+        self.refresh_next();
+        Some(())
+    }
+
+    /// Places the walk, inside the volume by `key`, in the cell it is in at
+    /// `key`: each moving axis settled from its first coordinate inside the
+    /// volume, the cell's key the latest of their entry crossings. `None`
+    /// when the ray has left the volume by `key`.
+    fn settle_all(&mut self, key: Key) -> Option<()> {
+        let mut entered = Key::BEFORE;
+        for axis in 0..3 {
+            let s = self.step[axis];
+            if s == 0 {
+                continue;
+            }
+            let (lo, hi) = (self.lo[axis], self.hi[axis]);
+            let (near, far) = if s > 0 { (lo, hi - 1) } else { (hi - 1, lo) };
+            let from = if (lo..hi).contains(&self.start[axis]) {
+                self.start[axis]
+            } else {
+                near
+            };
+            let (c, _) = self.settle(axis, from, far + s, key);
+            if c == far + s {
+                return None;
+            }
+            self.cell[axis] = c;
+            let entry = self.entry_key(axis, c);
+            if entered.lt(entry) {
+                entered = entry;
+            }
+        }
+        self.key = entered;
         self.refresh_next();
         Some(())
     }

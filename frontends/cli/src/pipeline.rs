@@ -11,7 +11,7 @@ use clap::ValueEnum;
 use voxtrace::glam::Vec3;
 use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{
-    render_parallel_with_progress, render_span, Camera, DenseScene, Error, Framebuffer, IAabb,
+    render_parallel_with_progress, render_region, Camera, DenseScene, Error, Framebuffer, IAabb,
     Node, OctreeScene, RayStats, Rect, RenderOptions, Scene, VoxelGenerator, VoxelSource,
 };
 
@@ -198,16 +198,23 @@ fn render<S: Scene + Sync>(
             .map_err(|e| e.to_string())?;
         (frame.into_pixels(), rays)
     } else {
-        // The scalar path, row by row for the progress callback.
+        // The scalar path, a band of rows at a time for the progress
+        // callback (sixteen rows: the tiles primary rays are traced in).
+        const BAND: u32 = 16;
         let area = region.area().map_err(|e| e.to_string())?;
         let mut pixels = Vec::new();
         pixels.try_reserve_exact(area).map_err(|_| no_memory())?;
         pixels.resize(area, 0);
         let mut rays = RayStats::default();
-        let rows = pixels.chunks_exact_mut(region.width as usize);
-        for (y, row) in (region.y..).zip(rows) {
-            rays += render_span(scene, camera, options, region.x, y, row);
-            progress(1);
+        let bands = pixels.chunks_mut(region.width as usize * BAND as usize);
+        for (y, band) in (region.y..).step_by(BAND as usize).zip(bands) {
+            let rect = Rect {
+                y,
+                height: (band.len() / region.width as usize) as u32,
+                ..region
+            };
+            rays += render_region(scene, camera, options, rect, band).map_err(|e| e.to_string())?;
+            progress(rect.height);
         }
         (pixels, rays)
     };

@@ -14,6 +14,7 @@ use glam::IVec3;
 use crate::geom::IAabb;
 use crate::voxel::Palette;
 
+pub(crate) mod beam;
 pub(crate) mod build;
 #[cfg(feature = "rayon")]
 pub(crate) mod build_par;

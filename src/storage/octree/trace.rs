@@ -16,7 +16,7 @@
 
 use glam::IVec3;
 
-use crate::geom::{IAabb, Ray, MAX_COORD};
+use crate::geom::{Cone, IAabb, Ray, MAX_COORD};
 use crate::scene::{Hit, Scene, Traced};
 use crate::storage::octree::{brick_bit, BrickMaterials, Node, NodeKind, OctreeScene};
 use crate::storage::walk::{Key, Walk};
@@ -35,17 +35,25 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
     }
 
     fn trace_counted(&self, ray: &Ray) -> Traced {
-        self.walk(ray, self.occupied, f32::INFINITY, |_| true)
+        self.walk(ray, self.occupied, 0.0, f32::INFINITY, |_| true)
+    }
+
+    fn clear_distance(&self, cone: &Cone) -> f32 {
+        self.beam_distance(cone)
+    }
+
+    fn trace_from(&self, ray: &Ray, t_start: f32) -> Traced {
+        self.walk(ray, self.occupied, t_start, f32::INFINITY, |_| true)
     }
 
     /// Walks the whole volume (not only the occupied box), so the debug
     /// view shows every box of the tree a ray crosses.
     fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced {
-        self.walk(ray, self.bounds, f32::INFINITY, visit)
+        self.walk(ray, self.bounds, 0.0, f32::INFINITY, visit)
     }
 
     fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        let hit = self.walk(ray, self.occupied, t_max, |_| true).hit;
+        let hit = self.walk(ray, self.occupied, 0.0, t_max, |_| true).hit;
         hit.filter(|h| h.t <= t_max)
     }
 
@@ -59,9 +67,10 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
 
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// The box-at-a-time walk through `region` (the occupied box, or the
-    /// whole volume), showing `visit` each empty cube it leaves and giving up
-    /// once it enters a cube farther than `t_max`; monomorphized so that
-    /// tracing without a visitor pays nothing for it.
+    /// whole volume) from where the ray is at `t_start` (0: its start),
+    /// showing `visit` each empty cube it leaves and giving up once it
+    /// enters a cube farther than `t_max`; monomorphized so that tracing
+    /// without a visitor pays nothing for it.
     ///
     /// Starting at the region instead of the volume changes nothing but
     /// speed: outside the occupied box every cell is empty, and the walk
@@ -71,11 +80,12 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         &self,
         ray: &Ray,
         region: IAabb,
+        t_start: f32,
         t_max: f32,
         mut visit: V,
     ) -> Traced {
         let walk = (!region.is_empty())
-            .then(|| Walk::start(ray, &region))
+            .then(|| Walk::start_from(ray, &region, t_start))
             .flatten();
         let Some(walk) = walk else {
             return Traced {

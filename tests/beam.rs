@@ -1,0 +1,125 @@
+//! Coherent primary rays: a tile's clear distance is conservative, and a
+//! walk started there finds the hit a walk from the camera finds.
+//!
+//! For random scenes (speckled volumes with empty and solid blocks, and the
+//! terrain), random cameras inside and outside the volume, and random tile
+//! sizes, every ray through every pixel of the tile (its center and a
+//! corner of its area) has no hit before the tile's clear distance by the
+//! brute-force reference, and `trace_from` at that distance returns the
+//! reference's hit.
+
+mod common;
+
+use common::reference::{as_ref_hit, first_hit_among};
+use common::sources::{solids, speckle};
+use proptest::prelude::*;
+use voxtrace::glam::Vec3;
+use voxtrace::{Camera, CameraSettings, IAabb, OctreeScene, Scene, VoxelGenerator, VoxelSource};
+
+/// Checks every pixel of the `tile_w x tile_h` tile at `(tx, ty)`.
+fn check_tile<S: VoxelSource>(
+    source: &S,
+    bounds: IAabb,
+    camera: &Camera,
+    (tx, ty, tile_w, tile_h): (u32, u32, u32, u32),
+) -> Result<(), TestCaseError> {
+    let scene = OctreeScene::build(source, bounds).unwrap();
+    let voxels = solids(source, bounds);
+    let (x1, y1) = (tx + tile_w, ty + tile_h);
+    let t0 = scene.clear_distance(&camera.tile_cone(tx, ty, x1, y1));
+    prop_assert!(t0 >= 0.0, "negative clear distance {t0}");
+    for y in ty..y1 {
+        for x in tx..x1 {
+            // The pixel's center, and the top-left corner of its area (where
+            // an anti-aliasing sample can fall).
+            for ray in [camera.get_ray(x, y), camera.get_ray_at(x as f32, y as f32)] {
+                let expected = first_hit_among(&ray, voxels.iter().copied());
+                if let Some(hit) = expected {
+                    prop_assert!(
+                        hit.t >= t0,
+                        "pixel ({x}, {y}) hits at {} before the clear distance {t0}",
+                        hit.t
+                    );
+                }
+                let traced = scene.trace_from(&ray, t0);
+                prop_assert_eq!(as_ref_hit(traced.hit), expected, "pixel ({}, {})", x, y);
+            }
+        }
+    }
+    Ok(())
+}
+
+fn camera(width: u32, height: u32, lookfrom: Vec3, lookat: Vec3, fov: f32) -> Option<Camera> {
+    Camera::new(CameraSettings {
+        width,
+        height,
+        lookfrom,
+        lookat,
+        vertical_fov: fov,
+        ..CameraSettings::default()
+    })
+    .ok()
+}
+
+fn vec3(range: std::ops::Range<f32>) -> impl Strategy<Value = Vec3> {
+    (range.clone(), range.clone(), range).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    #[test]
+    fn clear_distance_is_conservative_on_speckled_scenes(
+        seed in any::<u64>(),
+        percent in 1u64..40,
+        half in 4i32..14,
+        from in vec3(-30.0..30.0),
+        at in vec3(-6.0..6.0),
+        fov in 5.0f32..120.0,
+        tile in (1u32..9, 1u32..9),
+        origin in (0u32..24, 0u32..16),
+    ) {
+        let bounds = IAabb::centered(half);
+        let source = speckle(seed, percent);
+        let Some(camera) = camera(32, 24, from, at, fov) else { return Ok(()) };
+        let (tile_w, tile_h) = (tile.0.min(32 - origin.0), tile.1.min(24 - origin.1));
+        check_tile(&source, bounds, &camera, (origin.0, origin.1, tile_w, tile_h))?;
+    }
+
+    #[test]
+    fn clear_distance_is_conservative_on_the_terrain(
+        seed in 0u64..1000,
+        from in vec3(-40.0..40.0),
+        fov in 10.0f32..90.0,
+        tile in (2u32..17, 2u32..17),
+    ) {
+        // The terrain's surface runs through y = 34..60: a box around it.
+        let bounds = IAabb::new(voxtrace::glam::IVec3::new(-12, 30, -12), voxtrace::glam::IVec3::new(12, 64, 12));
+        let source = VoxelGenerator::new(seed);
+        let lookfrom = from + Vec3::new(0.0, 60.0, 0.0);
+        let Some(camera) = camera(24, 16, lookfrom, Vec3::new(0.0, 44.0, 0.0), fov) else { return Ok(()) };
+        let (tile_w, tile_h) = (tile.0.min(24), tile.1.min(16));
+        check_tile(&source, bounds, &camera, (0, 0, tile_w, tile_h))?;
+    }
+}
+
+#[test]
+fn a_clear_cone_skips_the_empty_space_before_the_surface() {
+    // Not only conservative but useful: looking down at a floor from 20
+    // above, the tile's clear distance is most of the way there.
+    let floor = voxtrace::FnSource::new(common::sources::palette(1), |p: voxtrace::glam::IVec3| {
+        u8::from(p.y < 0)
+    });
+    let bounds = IAabb::centered(16);
+    let scene = OctreeScene::build(&floor, bounds).unwrap();
+    let camera = camera(
+        16,
+        16,
+        Vec3::new(0.5, 20.0, 0.5),
+        Vec3::new(0.5, 0.0, 1.5),
+        20.0,
+    )
+    .unwrap();
+    let t0 = scene.clear_distance(&camera.tile_cone(6, 6, 10, 10));
+    assert!((15.0..=20.0).contains(&t0), "clear distance {t0}");
+}
