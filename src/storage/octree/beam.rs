@@ -14,6 +14,7 @@
 use glam::{IVec3, Vec3};
 
 use crate::geom::{distance_to_box, Cone, IAabb};
+use crate::math::floor_cell;
 use crate::storage::octree::{brick_bit, Node, NodeKind, OctreeScene};
 
 /// Occupancy bits of the 2x2x2 group at a brick's local origin.
@@ -35,6 +36,16 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     pub(crate) fn beam_distance(&self, cone: &Cone) -> f32 {
         // A NaN or non-positive cosine is no cone (wider than a half-space).
         if self.occupied.is_empty() || cone.cos_half_angle.is_nan() || cone.cos_half_angle <= 0.0 {
+            return 0.0;
+        }
+        // A camera inside a solid voxel: every ray hits it at 0. (One point
+        // query instead of a walk down to the same voxel for every tile.)
+        let cell = IVec3::new(
+            floor_cell(cone.apex.x),
+            floor_cell(cone.apex.y),
+            floor_cell(cone.apex.z),
+        );
+        if cell.as_vec3().cmplt(cone.apex).all() && self.material(cell) != 0 {
             return 0.0;
         }
         let nodes = self.nodes.as_ref();

@@ -287,6 +287,7 @@ pub(crate) fn child_offset(i: usize) -> IVec3 {
 /// order with `child(child_corner, half_size)`, stopping at the first error.
 /// Every builder (sequential, in a tile, parallel assembly) recurses through
 /// here, so all of them order the children the same way.
+#[inline(always)]
 pub(crate) fn octants(
     corner: IVec3,
     size: i32,
