@@ -1,7 +1,8 @@
 //! `voxtrace-report accuracy`: what accuracy costs in time. Renders a
 //! converged reference of one scene, then each setting along each accuracy
 //! axis, and records time, rays and error (RMSE, PSNR) against the
-//! reference.
+//! reference. Then the geometric section ([`crate::geometric`]): the exact
+//! walk against a textbook float-accumulating one, time and pixels differing.
 
 use std::fmt::Write as _;
 
@@ -13,6 +14,7 @@ use voxtrace::{
 use voxtrace_cli::on_threads;
 
 use crate::common_args::Output;
+use crate::geometric;
 use crate::measure::{cpu_name, format_ms, median_of};
 use crate::plot::{Chart, Line, Series};
 use plotters::chart::SeriesLabelPosition;
@@ -21,11 +23,16 @@ use plotters::chart::SeriesLabelPosition;
 #[derive(Debug, clap::Args)]
 pub struct AccuracyArgs {
     /// 1920x1080 instead of 640x360 (about nine times as long).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "quick")]
     full: bool,
-    /// Timed runs per setting (after one untimed warm-up).
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u16).range(1..))]
-    runs: u16,
+    /// 320x180, one run per setting, and the geometric section at sizes 50
+    /// and 100 only: a smoke run, not figures for the README.
+    #[arg(long)]
+    quick: bool,
+    /// Timed runs per setting (after one untimed warm-up) [default: 3,
+    /// quick: 1].
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
+    runs: Option<u16>,
     #[command(flatten)]
     output: Output,
 }
@@ -101,7 +108,13 @@ struct Row {
 /// Renders the reference and every setting, writes `accuracy.md` and
 /// `accuracy.png` into `--out-dir`.
 pub fn run(args: &AccuracyArgs) -> Result<(), String> {
-    let (width, height) = if args.full { (1920, 1080) } else { (640, 360) };
+    let (width, height) = if args.full {
+        (1920, 1080)
+    } else if args.quick {
+        (320, 180)
+    } else {
+        (640, 360)
+    };
     args.output.prepare()?;
     let camera = Camera::new(CameraSettings {
         width,
@@ -113,7 +126,7 @@ pub fn run(args: &AccuracyArgs) -> Result<(), String> {
     let scene = OctreeScene::build(&VoxelGenerator::new(SEED), IAabb::centered(SIZE))
         .map_err(|e| e.to_string())?;
     let frame = Framebuffer::new(width, height).map_err(|e| e.to_string())?;
-    let runs = usize::from(args.runs);
+    let runs = usize::from(args.runs.unwrap_or(if args.quick { 1 } else { 3 }));
 
     let (rows, reference_ms, threads) = on_threads(args.output.threads, || {
         let threads = voxtrace::rayon::current_num_threads();
@@ -150,11 +163,31 @@ pub fn run(args: &AccuracyArgs) -> Result<(), String> {
         Ok((rows, elapsed.as_secs_f64() * 1e3, threads))
     })?;
 
+    eprintln!("geometric: exact walk against the textbook walk, one thread");
+    let sizes: &[i32] = if args.quick {
+        &geometric::QUICK_SIZES
+    } else {
+        &geometric::SIZES
+    };
+    let geometric_rows = geometric::measure(SEED, sizes, (width, height), runs)?;
+
     let command = format!(
         "cargo run --release -p voxtrace-report -- accuracy{}",
-        if args.full { " --full" } else { "" }
+        if args.full {
+            " --full"
+        } else if args.quick {
+            " --quick"
+        } else {
+            ""
+        }
     );
-    let md = table(&rows, &command, width, height, threads, runs, reference_ms);
+    let mut md = table(&rows, &command, width, height, threads, runs, reference_ms);
+    md.push_str(&geometric::section(
+        &geometric_rows,
+        SEED,
+        (width, height),
+        runs,
+    ));
     args.output
         .write("accuracy", &md, &[chart(&rows, width, height)])?;
     Ok(())

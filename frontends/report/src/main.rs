@@ -1,16 +1,19 @@
 //! `voxtrace-report`: measures voxtrace with the CLI's own code path and
 //! writes the tables (markdown) and plots (PNG) the README shows.
 //!
-//! `cargo run --release -p voxtrace-report -- speed [--quick]`
-//! `cargo run --release -p voxtrace-report -- accuracy [--full]`
+//! `cargo run --release -p voxtrace-report -- speed [--quick] [--vs-binary PATH]`
+//! `cargo run --release -p voxtrace-report -- accuracy [--quick | --full]`
 
 mod accuracy;
 mod common_args;
+mod geometric;
 mod measure;
+mod naive_dda;
 mod plot;
 mod speed;
 mod speed_data;
 mod speed_tables;
+mod speed_vs;
 mod surface;
 
 use std::process::ExitCode;
@@ -28,10 +31,13 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Report {
     /// Render and build times per backend and scene size, beside the seed
-    /// paper's table; storage bytes; octree scaling to size 2048.
+    /// paper's table; storage bytes; octree scaling to size 2048; with
+    /// --vs-binary, a "speedup vs" table against another voxtrace binary.
     Speed(speed::SpeedArgs),
     /// Render time, rays and error against a converged reference for each
-    /// setting of each accuracy axis (samples, AO rays, shadows).
+    /// setting of each accuracy axis (samples, AO rays, shadows); then the
+    /// exact walk against a textbook float-accumulating one (time, pixels
+    /// whose hit voxel differs) at the paper's sizes.
     Accuracy(accuracy::AccuracyArgs),
 }
 

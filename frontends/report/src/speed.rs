@@ -1,6 +1,7 @@
 //! `voxtrace-report speed`: the seed paper's table measured here, with the
 //! CLI's build and render path, plus storage, build times, octree scaling,
-//! and a plot of render time and memory against scene size.
+//! and a plot of render time and memory against scene size; with
+//! `--vs-binary`, this revision's binary against another ([`crate::speed_vs`]).
 
 use voxtrace::{Camera, CameraSettings, Rect, RenderOptions, VoxelGenerator};
 use voxtrace_cli::{on_threads, Backend, BuiltScene};
@@ -9,6 +10,7 @@ use crate::common_args::Output;
 use crate::measure::{format_ms, median_of};
 use crate::speed_data::{Measured, View, FULL_HD, SCALING_SIZES, TABLE_SIZES, UHD_8K};
 use crate::speed_tables::{charts, tables};
+use crate::speed_vs::{self, VsArgs};
 use crate::surface::surface_voxels;
 
 /// Options of the `speed` report.
@@ -24,6 +26,8 @@ pub struct SpeedArgs {
     #[arg(long, default_value_t = 1)]
     seed: u64,
     #[command(flatten)]
+    vs: VsArgs,
+    #[command(flatten)]
     output: Output,
 }
 
@@ -31,17 +35,34 @@ pub struct SpeedArgs {
 pub fn run(args: &SpeedArgs) -> Result<(), String> {
     let runs = usize::from(args.runs.unwrap_or(if args.quick { 3 } else { 5 }));
     args.output.prepare()?;
+    let binaries = args.vs.binaries()?;
 
     let (measured, threads) = on_threads(args.output.threads, || {
         let threads = voxtrace::rayon::current_num_threads();
         Ok((measure_all(args, runs)?, threads))
     })?;
+    // After the in-process grid, so the processes do not compete with it.
+    let vs = match &binaries {
+        Some((ours, theirs)) => {
+            let threads = args.output.threads.map_or(threads, usize::from);
+            let rows = speed_vs::measure((ours, theirs), &measured, args.seed, threads, runs)?;
+            Some((rows, theirs, threads))
+        }
+        None => None,
+    };
 
-    let command = format!(
+    let mut command = format!(
         "cargo run --release -p voxtrace-report -- speed{}",
         if args.quick { " --quick" } else { "" }
     );
-    let markdown = tables(&measured, threads, runs, args.seed, &command);
+    if let Some(theirs) = &args.vs.vs_binary {
+        command.push_str(&format!(" --vs-binary {}", theirs.display()));
+    }
+    let mut markdown = tables(&measured, threads, runs, args.seed, &command);
+    if let Some((rows, theirs, threads)) = &vs {
+        markdown.push('\n');
+        markdown.push_str(&speed_vs::table(rows, theirs, *threads, runs));
+    }
     args.output
         .write("speed", &markdown, &charts(&measured, threads))
 }
