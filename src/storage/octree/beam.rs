@@ -20,8 +20,19 @@ use crate::storage::octree::{brick_bit, Node, NodeKind, OctreeScene};
 /// Occupancy bits of the 2x2x2 group at a brick's local origin.
 const GROUP: u64 = 0x0033_0033;
 
-/// Pending boxes: at most seven siblings wait at each of the 22 levels.
-const STACK: usize = 8 * 23;
+/// Levels of the walk: the largest root (side 2^23) has branches at depths
+/// 0 to 20 above its side-4 bricks.
+const DEPTH: usize = 21;
+
+/// A branch being walked: its children and cube, and the next child (in
+/// nearest-first order) to visit.
+#[derive(Clone, Copy)]
+struct Level {
+    children: u8,
+    first: u32,
+    corner: IVec3,
+    next: u32,
+}
 
 /// How much earlier than the nearest box's distance rays start: a ray's
 /// crossing times are rounded (a few units in the last place), the box
@@ -50,70 +61,92 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         }
         let nodes = self.nodes.as_ref();
         let min = self.bounds.min;
+        let root_log = self.root_size.trailing_zeros();
         // Children nearest the apex first: mirror the octant order on the
         // axes the cone's axis runs down.
         let down = cone.axis.cmplt(Vec3::ZERO);
         let near_first = u32::from(down.x) | u32::from(down.y) << 1 | u32::from(down.z) << 2;
         let mut best = f32::INFINITY;
-        let mut stack = [(Node::EMPTY, IVec3::ZERO, 0u32); STACK];
-        stack[0] = (self.root, IVec3::ZERO, self.root_size.trailing_zeros());
-        let mut len = 1;
-        while len > 0 {
-            len -= 1;
-            let (node, corner, log) = stack[len];
-            let side = 1 << log;
-            let Some(distance) = self.reach(cone, min + corner, side, best) else {
-                continue;
-            };
-            match node.0 {
-                NodeKind::Solid(_) => best = distance,
-                NodeKind::Brick { occupancy, .. } => {
-                    for group in 0..8u32 {
-                        let local = IVec3::new(
-                            (group & 1) as i32 * 2,
-                            (group >> 1 & 1) as i32 * 2,
-                            (group >> 2) as i32 * 2,
-                        );
-                        if occupancy & GROUP << brick_bit(local) == 0 {
-                            continue;
+        let mut levels = [Level {
+            children: 0,
+            first: 0,
+            corner: IVec3::ZERO,
+            next: 0,
+        }; DEPTH];
+        let mut depth = 0;
+        // The node to look at, its cube (corner relative to `min`, side
+        // 2^log); then the next one comes from the deepest unfinished branch.
+        let mut visit = Some((self.root, IVec3::ZERO, root_log));
+        loop {
+            if let Some((node, corner, log)) = visit.take() {
+                if let Some(distance) = self.reach(cone, min + corner, 1 << log, best) {
+                    match node.0 {
+                        NodeKind::Solid(_) => best = distance,
+                        NodeKind::Brick { occupancy, .. } => {
+                            best = best.min(self.brick_reach(cone, min + corner, occupancy, best));
                         }
-                        if let Some(d) = self.reach(cone, min + corner + local, 2, best) {
-                            best = d;
+                        NodeKind::Branch { children, first } if depth < DEPTH => {
+                            levels[depth] = Level {
+                                children,
+                                first,
+                                corner,
+                                next: 0,
+                            };
+                            depth += 1;
                         }
-                    }
-                }
-                // No room for the children (deeper than any tree the
-                // builder makes): count the whole cube as an obstacle.
-                NodeKind::Branch { .. } if len + 8 > STACK => best = distance,
-                NodeKind::Branch { children, first } => {
-                    let half = side / 2;
-                    // Pushed farthest first, so the nearest is popped next.
-                    for k in (0..8u32).rev() {
-                        let octant = k ^ near_first;
-                        if children & (1 << octant) == 0 {
-                            continue;
-                        }
-                        let rank = (u32::from(children) & ((1 << octant) - 1)).count_ones();
-                        // Always present: the builder's invariant, which the
-                        // tracer relies on too.
-                        let Some(&child) = nodes.get((first + rank) as usize) else {
-                            continue;
-                        };
-                        let offset = IVec3::new(
-                            (octant & 1) as i32,
-                            (octant >> 1 & 1) as i32,
-                            (octant >> 2) as i32,
-                        ) * half;
-                        stack[len] = (child, corner + offset, log - 1);
-                        len += 1;
+                        // Deeper than any tree the builder makes: the whole
+                        // cube counts as an obstacle.
+                        NodeKind::Branch { .. } => best = distance,
                     }
                 }
             }
-            if best == 0.0 {
+            if best == 0.0 || depth == 0 {
                 break;
             }
+            let level = &mut levels[depth - 1];
+            if level.next == 8 {
+                depth -= 1;
+                continue;
+            }
+            let octant = level.next ^ near_first;
+            level.next += 1;
+            if level.children & (1 << octant) == 0 {
+                continue;
+            }
+            let rank = (u32::from(level.children) & ((1 << octant) - 1)).count_ones();
+            // Always present: the builder's invariant, which the tracer
+            // relies on too.
+            let Some(&child) = nodes.get((level.first + rank) as usize) else {
+                continue;
+            };
+            let child_log = root_log - depth as u32;
+            let offset = IVec3::new(
+                (octant & 1) as i32,
+                (octant >> 1 & 1) as i32,
+                (octant >> 2) as i32,
+            ) << child_log;
+            visit = Some((child, level.corner + offset, child_log));
         }
         best * MARGIN
+    }
+
+    /// The nearest of a brick's occupied 2x2x2 groups that may meet the
+    /// cone and is closer than `best` (else `best`).
+    fn brick_reach(&self, cone: &Cone, corner: IVec3, occupancy: u64, mut best: f32) -> f32 {
+        for group in 0..8u32 {
+            let local = IVec3::new(
+                (group & 1) as i32 * 2,
+                (group >> 1 & 1) as i32 * 2,
+                (group >> 2) as i32 * 2,
+            );
+            if occupancy & GROUP << brick_bit(local) == 0 {
+                continue;
+            }
+            if let Some(d) = self.reach(cone, corner + local, 2, best) {
+                best = d;
+            }
+        }
+        best
     }
 
     /// The distance from the cone's apex to the cube `[corner, corner +
