@@ -33,10 +33,10 @@
 //! the walk stops once it leaves the volume, so a walk takes at most
 //! `size.x + size.y + size.z` moves ([`max_steps`]).
 
-use glam::{BVec3, IVec3, Vec3};
+use glam::{BVec3, BVec3A, IVec3, Vec3, Vec3A};
 
 use crate::geom::{Face, IAabb, Ray};
-use crate::math::{ceil32, floor32, floor_cell, to_cell};
+use crate::math::floor_cell;
 
 /// A crossing's place in the ray's visiting order: by time, then by axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -124,8 +124,8 @@ impl Walk {
     /// of every axis, and misses if it crosses a far plane first.
     pub(crate) fn start(ray: &Ray, bounds: &IAabb) -> Option<Walk> {
         let (origin, dir, inv_dir) = (ray.origin(), ray.dir(), ray.inv_dir());
-        let mut step = IVec3::ZERO;
-        let mut start = IVec3::ZERO;
+        let mut step = [0; 3];
+        let mut start = [0; 3];
         let mut start_keys = [Key::BEFORE; 3];
         for axis in 0..3 {
             let (o, d) = (origin[axis], dir[axis]);
@@ -133,29 +133,24 @@ impl Walk {
             // crossing at distance 0 into NaN; such an axis never reaches a
             // plane in f32 anyway, so it counts as not moving.
             let moving = d != 0.0 && inv_dir[axis].is_finite();
-            step[axis] = if !moving {
-                0
-            } else if d > 0.0 {
-                1
-            } else {
-                -1
-            };
-            start[axis] = if step[axis] < 0 {
-                to_cell(ceil32(o) - 1.0)
-            } else {
-                floor_cell(o)
-            };
+            let s = i32::from(moving && d > 0.0) - i32::from(moving && d < 0.0);
             // The start cell's entry plane is floor(o) moving up, ceil(o)
             // moving down: the origin lies on it exactly when it is an
-            // integer. (Compared in f32: the saturated cell of a huge origin
-            // must not be incremented.)
-            if step[axis] != 0 && floor32(o) == o {
+            // integer, and then a ray moving down starts in the cell below.
+            // (Saturated cells of huge origins lie outside every volume.)
+            let floor = floor_cell(o);
+            let on_plane = moving && floor as f32 == o;
+            start[axis] = floor.saturating_sub(i32::from(on_plane && s < 0));
+            if on_plane {
                 start_keys[axis] = Key {
                     t: 0.0,
                     axis: axis as u8,
                 };
             }
+            step[axis] = s;
         }
+        let step = IVec3::from_array(step);
+        let start = IVec3::from_array(start);
         let mut walk = Walk {
             origin,
             dir,
@@ -177,47 +172,45 @@ impl Walk {
     }
 
     /// Moves the walk from its start cell to the first cell inside the volume.
+    #[inline]
     fn enter(&mut self) -> Option<()> {
+        let (lo, hi, start) = (self.lo, self.hi, self.start);
         // The key of entering the volume: the latest of the per-axis entries.
         let mut key_in = Key::BEFORE;
-        let mut entry_axis = None;
+        let mut entry_axis = 3;
+        let mut inside = [false; 3];
         for axis in 0..3 {
-            let (s, c) = (self.step[axis], self.start[axis]);
-            let (lo, hi) = (self.lo[axis], self.hi[axis]);
-            let key = if (lo..hi).contains(&c) {
+            let (s, c) = (self.step[axis], start[axis]);
+            inside[axis] = lo[axis] <= c && c < hi[axis];
+            let key = if inside[axis] {
                 self.start_keys[axis]
-            } else if s > 0 && c < lo {
-                self.crossing(axis, lo)
-            } else if s < 0 && c >= hi {
-                self.crossing(axis, hi)
+            } else if s > 0 && c < lo[axis] {
+                self.crossing(axis, lo[axis])
+            } else if s < 0 && c >= hi[axis] {
+                self.crossing(axis, hi[axis])
             } else {
                 return None; // outside on an axis and not moving toward it
             };
             if key_in.lt(key) {
                 key_in = key;
-                entry_axis = Some(axis);
+                entry_axis = axis;
             }
         }
         if key_in.t == f32::INFINITY {
             return None;
         }
         // Only a near-plane crossing moves a cell; start keys do not.
-        let entry_axis = entry_axis.filter(|&a| !(self.lo[a]..self.hi[a]).contains(&self.start[a]));
-        if let Some(a) = entry_axis {
-            self.cell[a] = if self.step[a] > 0 {
-                self.lo[a]
-            } else {
-                self.hi[a] - 1
-            };
+        if entry_axis < 3 && !inside[entry_axis] {
+            let a = entry_axis;
+            self.cell[a] = if self.step[a] > 0 { lo[a] } else { hi[a] - 1 };
             for b in (0..3).filter(|&b| b != a && self.step[b] != 0) {
                 let s = self.step[b];
                 let (near, far) = if s > 0 {
-                    (self.lo[b], self.hi[b] - 1)
+                    (lo[b], hi[b] - 1)
                 } else {
-                    (self.hi[b] - 1, self.lo[b])
+                    (hi[b] - 1, lo[b])
                 };
-                let inside = (self.lo[b]..self.hi[b]).contains(&self.start[b]);
-                let from = if inside { self.start[b] } else { near };
+                let from = if inside[b] { start[b] } else { near };
                 self.cell[b] = self.settle(b, from, far + s, key_in).0;
             }
             if !self.inside() {
@@ -391,5 +384,67 @@ impl Walk {
         self.cell[axis] = c;
         self.next_t[axis] = self.crossing(axis, self.exit_plane(axis, c)).t;
         true
+    }
+}
+
+/// The octree's two questions of a [`Walk`] ([`Walk::exit_of`] and
+/// [`Walk::upper_sides`]) in four-lane form, answered with the same
+/// crossings and the same order: built once per ray by [`Walk::lanes`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Lanes {
+    origin: Vec3A,
+    inv_dir: Vec3A,
+    /// The start cell, as exact floats (saturated cells keep their order
+    /// against every plane of a volume).
+    start: Vec3A,
+    up: BVec3A,
+    down: BVec3A,
+    moving: BVec3A,
+}
+
+impl Walk {
+    /// This walk's [`Lanes`].
+    pub(crate) fn lanes(&self) -> Lanes {
+        Lanes {
+            origin: self.origin.into(),
+            inv_dir: self.inv_dir.into(),
+            start: self.start.as_vec3a(),
+            up: lanes(self.up),
+            down: lanes(self.moving & !self.up),
+            moving: lanes(self.moving),
+        }
+    }
+}
+
+/// `b` as four-lane booleans.
+fn lanes(b: BVec3) -> BVec3A {
+    BVec3A::new(b.x, b.y, b.z)
+}
+
+impl Lanes {
+    /// [`Walk::exit_of`] for the box `[lo, hi)`, given as exact floats.
+    #[inline]
+    pub(crate) fn exit_of(&self, lo: Vec3A, hi: Vec3A) -> Key {
+        let far = Vec3A::select(self.up, hi, lo);
+        let t = Vec3A::select(
+            self.moving,
+            (far - self.origin) * self.inv_dir,
+            Vec3A::INFINITY,
+        );
+        earliest(t.into())
+    }
+
+    /// [`Walk::upper_sides`] for `planes` given as exact floats, as three
+    /// bits `x | y << 1 | z << 2`.
+    #[inline]
+    pub(crate) fn upper_sides(&self, planes: Vec3A, key: Key) -> u32 {
+        let t = (planes - self.origin) * self.inv_dir;
+        let kt = Vec3A::splat(key.t);
+        let lane = Vec3A::new(0.0, 1.0, 2.0).cmplt(Vec3A::splat(f32::from(key.axis)));
+        let crossed = t.cmplt(kt) | (t.cmpeq(kt) & lane);
+        let behind_start = planes.cmple(self.start);
+        // Moving up: above once crossed; moving down: above until crossed;
+        // not moving: where the start is.
+        ((behind_start & !(self.down & crossed)) | (self.up & crossed)).bitmask()
     }
 }

@@ -19,11 +19,15 @@ use glam::IVec3;
 use crate::geom::{IAabb, Ray, MAX_COORD};
 use crate::scene::{Hit, Scene, Traced};
 use crate::storage::octree::{brick_bit, BrickMaterials, Node, NodeKind, OctreeScene};
-use crate::storage::walk::{Key, Walk};
+use crate::storage::walk::{Key, Lanes, Walk};
 
 /// Entries of the path: the largest root has side `2 * MAX_COORD` = 2^23,
 /// and halving it down to side-4 bricks takes depths 0 to 21.
 const MAX_DEPTH: usize = (2 * MAX_COORD as u32).trailing_zeros() as usize - 1;
+
+/// Entries of the path array: a power of two above `MAX_DEPTH`, so that
+/// indexing it modulo its length needs no bounds check.
+const PATH: usize = (MAX_DEPTH + 1).next_power_of_two();
 
 /// Occupancy bits of the 2x2x2 group at the brick's local origin: `x | y << 2
 /// | z << 4` for `x, y, z` in `{0, 1}`.
@@ -83,16 +87,19 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                 steps: 0,
             };
         };
+        let lanes = walk.lanes();
         let min = self.bounds.min;
         let leaves_region = walk.exit_of(region.min, region.max);
         // The region relative to the tree's corner.
         let (region_lo, region_hi) = (region.min - min, region.max - min);
         let nodes = self.nodes.as_ref();
         let root_log = self.root_size.trailing_zeros();
-        // path[d] (d >= 1): index of the node at depth d holding the
-        // position, whose cube has side 2^(root_log - d); valid to `depth`.
-        let mut path = [0u32; MAX_DEPTH];
+        // path[d] (1 <= d <= depth): index of the node at depth d holding
+        // the position, whose cube has side 2^(root_log - d); `node` is the
+        // one at `depth` itself.
+        let mut path = [0u32; PATH];
         let mut depth = 0;
+        let mut node = self.root;
         // The position: the ray is, at `key`, in the cube of side
         // 2^known_log at `corner` (relative to `min`, where every cube of
         // the tree starts at a multiple of its side).
@@ -104,15 +111,10 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             // Down from `depth` to the deepest node holding the position;
             // the empty cube found there has side 2^empty_log.
             let empty_log = loop {
-                let node = if depth == 0 {
-                    self.root
-                } else {
-                    nodes[path[depth] as usize]
-                };
                 match node.0 {
                     NodeKind::Branch { children, first } => {
                         let half_log = root_log - depth as u32 - 1;
-                        refine(&walk, key, min, &mut corner, &mut known_log, half_log);
+                        refine(&lanes, key, min, &mut corner, &mut known_log, half_log);
                         let upper = (corner >> half_log) & 1;
                         let octant = (upper.x | upper.y << 1 | upper.z << 2) as u32;
                         if children & (1 << octant) == 0 {
@@ -120,21 +122,23 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                         }
                         let rank = (u32::from(children) & ((1 << octant) - 1)).count_ones();
                         depth += 1;
-                        path[depth] = first + rank;
+                        let index = first + rank;
+                        path[depth % PATH] = index;
+                        node = nodes[index as usize];
                     }
                     NodeKind::Solid(material) => {
-                        refine(&walk, key, min, &mut corner, &mut known_log, 0);
+                        refine(&lanes, key, min, &mut corner, &mut known_log, 0);
                         return self.hit(&walk, key, min + corner, material, steps);
                     }
                     NodeKind::Brick {
                         occupancy,
                         materials,
                     } => {
-                        refine(&walk, key, min, &mut corner, &mut known_log, 1);
+                        refine(&lanes, key, min, &mut corner, &mut known_log, 1);
                         if occupancy & GROUP << brick_bit(corner & 2) == 0 {
                             break 1;
                         }
-                        refine(&walk, key, min, &mut corner, &mut known_log, 0);
+                        refine(&lanes, key, min, &mut corner, &mut known_log, 0);
                         let bit = brick_bit(corner & 3);
                         if occupancy >> bit & 1 == 0 {
                             break 0;
@@ -147,7 +151,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             // Leave the empty cube through its first far-plane crossing.
             let cube = corner >> empty_log << empty_log;
             let side = 1 << empty_log;
-            let exit = walk.exit_of(min + cube, min + cube + side);
+            let low = (min + cube).as_vec3a();
+            let exit = lanes.exit_of(low, low + side as f32);
             steps += 1;
             let empty = IAabb {
                 min: min + cube,
@@ -186,7 +191,14 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             // hold the new position.
             let changed = (corner[axis] ^ cube[axis]) as u32;
             let keep = (root_log - (u32::BITS - changed.leading_zeros())) as usize;
-            depth = depth.min(keep);
+            if keep < depth {
+                depth = keep;
+                node = if depth == 0 {
+                    self.root
+                } else {
+                    nodes[path[depth % PATH] as usize]
+                };
+            }
             key = exit;
         }
     }
@@ -215,11 +227,12 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
 /// 2^to_log holding the ray at `key`, halving once per level and deciding
 /// each axis' half by the side of the midplane the ray is on.
 #[inline]
-fn refine(walk: &Walk, key: Key, min: IVec3, corner: &mut IVec3, known_log: &mut u32, to_log: u32) {
+fn refine(lanes: &Lanes, key: Key, min: IVec3, corner: &mut IVec3, known_log: &mut u32, to_log: u32) {
     while *known_log > to_log {
         *known_log -= 1;
-        let half = IVec3::splat(1 << *known_log);
-        let upper = walk.upper_sides(min + *corner + half, key);
-        *corner += IVec3::select(upper, half, IVec3::ZERO);
+        let half = 1 << *known_log;
+        let planes = (min + *corner + half).as_vec3a();
+        let upper = lanes.upper_sides(planes, key) as i32;
+        *corner += IVec3::new(upper & 1, upper >> 1 & 1, upper >> 2) << *known_log;
     }
 }
