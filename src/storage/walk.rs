@@ -431,7 +431,20 @@ impl Lanes {
             (far - self.origin) * self.inv_dir,
             Vec3A::INFINITY,
         );
-        earliest(t.into())
+        // `earliest`, without branches: which of the three comes first
+        // is what the walk cannot predict.
+        let (x, y, z) = (t.x, t.y, t.z);
+        let first = x <= y && x <= z;
+        let second = !(x <= y) && y <= z;
+        let axis = u8::from(!first) * (2 - u8::from(second));
+        let t = if first {
+            x
+        } else if second {
+            y
+        } else {
+            z
+        };
+        Key { t, axis }
     }
 
     /// [`Walk::upper_sides`] for `planes` given as exact floats, as three
