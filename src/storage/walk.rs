@@ -202,6 +202,14 @@ impl Walk {
         // Only a near-plane crossing moves a cell; start keys do not.
         if entry_axis < 3 && !inside[entry_axis] {
             let a = entry_axis;
+            // Missed: another axis' far plane comes first. (What settling
+            // would find, cheaper: half the rays of a frame miss.)
+            for b in (0..3).filter(|&b| b != a && self.step[b] != 0) {
+                let far = if self.step[b] > 0 { hi[b] } else { lo[b] };
+                if self.crossing(b, far).lt(key_in) {
+                    return None;
+                }
+            }
             self.cell[a] = if self.step[a] > 0 { lo[a] } else { hi[a] - 1 };
             for b in (0..3).filter(|&b| b != a && self.step[b] != 0) {
                 let s = self.step[b];
@@ -241,15 +249,6 @@ impl Walk {
         }
     }
 
-    /// Key of the crossing that enters coordinate `c` on a moving `axis`.
-    fn entry_key(&self, axis: usize, c: i32) -> Key {
-        if c == self.start[axis] {
-            self.start_keys[axis]
-        } else {
-            self.crossing(axis, self.exit_plane(axis, c) - self.step[axis])
-        }
-    }
-
     /// The coordinate on moving axis `axis` (not the axis of `key`) that the
     /// ray is in at `key`: the one with `entry < key < exit`, searched from
     /// `from` forward, stopping at `limit`; and the time of its exit
@@ -257,18 +256,44 @@ impl Walk {
     /// corrects it with exact key comparisons, so the answer is the one
     /// single steps would reach.
     fn settle(&self, axis: usize, from: i32, limit: i32, key: Key) -> (i32, f32) {
-        let s = self.step[axis];
-        let span = i64::from(limit - from) * i64::from(s);
-        let guess = floor_cell(self.origin[axis] + key.t * self.dir[axis]);
-        let ahead = ((i64::from(guess) - i64::from(from)) * i64::from(s)).clamp(0, span);
-        let mut c = from + (ahead as i32) * s;
-        while c != from && !self.entry_key(axis, c).lt(key) {
-            c -= s;
+        if self.step[axis] > 0 {
+            self.settle_toward::<1>(axis, from, limit, key)
+        } else {
+            self.settle_toward::<-1>(axis, from, limit, key)
         }
-        let mut exit = self.crossing(axis, self.exit_plane(axis, c));
+    }
+
+    /// [`Walk::settle`] for a ray moving toward `S` (+1 or -1) on `axis`.
+    #[inline]
+    fn settle_toward<const S: i32>(&self, axis: usize, from: i32, limit: i32, key: Key) -> (i32, f32) {
+        let (o, inv) = (self.origin[axis], self.inv_dir[axis]);
+        let crossing = |plane: i32| Key {
+            t: (plane as f32 - o) * inv,
+            axis: axis as u8,
+        };
+        // Moving up a cell is entered through its lower plane and left
+        // through its upper one; moving down the other way round.
+        let exit_plane = |c: i32| if S > 0 { c + 1 } else { c };
+        let entry_plane = |c: i32| if S > 0 { c } else { c + 1 };
+        let span = i64::from(limit - from) * i64::from(S);
+        let guess = floor_cell(o + key.t * self.dir[axis]);
+        let ahead = ((i64::from(guess) - i64::from(from)) * i64::from(S)).clamp(0, span);
+        let mut c = from + (ahead as i32) * S;
+        while c != from {
+            let entry = if c == self.start[axis] {
+                self.start_keys[axis]
+            } else {
+                crossing(entry_plane(c))
+            };
+            if entry.lt(key) {
+                break;
+            }
+            c -= S;
+        }
+        let mut exit = crossing(exit_plane(c));
         while c != limit && exit.lt(key) {
-            c += s;
-            exit = self.crossing(axis, self.exit_plane(axis, c));
+            c += S;
+            exit = crossing(exit_plane(c));
         }
         (c, exit.t)
     }
