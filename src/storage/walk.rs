@@ -17,8 +17,9 @@
 //! dense backend steps one cell at a time. The octree moves from box to box:
 //! [`Walk::exit_of`] is the key at which the ray leaves an empty box (the
 //! earliest of its far-plane crossings, which single steps would also reach
-//! there), and [`Walk::upper_sides`] says which half of a box the ray is in
-//! at a key, from the same crossings and the same order. Both backends
+//! there), and the octree's `Lanes::upper_sides` says which half of a box
+//! the ray is in at a key, from the same crossings, the same start rule and
+//! the same order. Both backends
 //! therefore find the same first solid cell, face and `t`, bit for bit.
 //!
 //! # The start
@@ -33,7 +34,7 @@
 //! the walk stops once it leaves the volume, so a walk takes at most
 //! `size.x + size.y + size.z` moves ([`max_steps`]).
 
-use glam::{BVec3, BVec3A, IVec3, Vec3, Vec3A};
+use glam::{BVec3, IVec3, Vec3};
 
 use crate::geom::{Face, IAabb, Ray};
 use crate::math::floor_cell;
@@ -370,25 +371,12 @@ impl Walk {
         self.step[axis] > 0
     }
 
-    /// For each axis, whether the cell the walk is in just after crossing
-    /// `key` lies at or above that axis' lane of `planes`, for planes
-    /// strictly inside a box the walk entered at `key` (never the plane of
-    /// `key` itself). Planes behind the start are decided by the start cell,
-    /// as the start rule says; planes ahead are crossed when their key comes
-    /// strictly first. (A plane of `key`'s own axis with an equal key lies
-    /// beyond the entry plane: single steps reach it only after entering.)
+    /// The ray's origin, reciprocal direction, start cell and per-axis
+    /// steps (+1, -1, or 0): what a caller needs to ask the walk's
+    /// questions in another form (the octree's four-lane `Lanes`).
     #[inline]
-    pub(crate) fn upper_sides(&self, planes: IVec3, key: Key) -> BVec3 {
-        let t = (planes.as_vec3() - self.origin) * self.inv_dir;
-        let lane = IVec3::new(0, 1, 2).cmplt(IVec3::splat(i32::from(key.axis)));
-        let crossed = t.cmplt(Vec3::splat(key.t)) | (t.cmpeq(Vec3::splat(key.t)) & lane);
-        let behind_start = planes.cmple(self.start);
-        // Moving up: above once crossed; moving down: above until crossed;
-        // not moving: where the start is.
-        let down = self.moving & !self.up;
-        (self.up & (behind_start | crossed))
-            | (down & behind_start & !crossed)
-            | (!self.moving & behind_start)
+    pub(crate) fn parts(&self) -> (Vec3, Vec3, IVec3, IVec3) {
+        (self.origin, self.inv_dir, self.start, self.step)
     }
 
     /// Steps to the next cell. Returns `false` when the ray leaves the volume
@@ -409,80 +397,5 @@ impl Walk {
         self.cell[axis] = c;
         self.next_t[axis] = self.crossing(axis, self.exit_plane(axis, c)).t;
         true
-    }
-}
-
-/// The octree's two questions of a [`Walk`] ([`Walk::exit_of`] and
-/// [`Walk::upper_sides`]) in four-lane form, answered with the same
-/// crossings and the same order: built once per ray by [`Walk::lanes`].
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Lanes {
-    origin: Vec3A,
-    inv_dir: Vec3A,
-    /// The start cell, as exact floats (saturated cells keep their order
-    /// against every plane of a volume).
-    start: Vec3A,
-    up: BVec3A,
-    down: BVec3A,
-    moving: BVec3A,
-}
-
-impl Walk {
-    /// This walk's [`Lanes`].
-    pub(crate) fn lanes(&self) -> Lanes {
-        Lanes {
-            origin: self.origin.into(),
-            inv_dir: self.inv_dir.into(),
-            start: self.start.as_vec3a(),
-            up: lanes(self.up),
-            down: lanes(self.moving & !self.up),
-            moving: lanes(self.moving),
-        }
-    }
-}
-
-/// `b` as four-lane booleans.
-fn lanes(b: BVec3) -> BVec3A {
-    BVec3A::new(b.x, b.y, b.z)
-}
-
-impl Lanes {
-    /// [`Walk::exit_of`] for the box `[lo, hi)`, given as exact floats.
-    #[inline]
-    pub(crate) fn exit_of(&self, lo: Vec3A, hi: Vec3A) -> Key {
-        let far = Vec3A::select(self.up, hi, lo);
-        let t = Vec3A::select(
-            self.moving,
-            (far - self.origin) * self.inv_dir,
-            Vec3A::INFINITY,
-        );
-        // `earliest`, without branches: which of the three comes first
-        // is what the walk cannot predict.
-        let (x, y, z) = (t.x, t.y, t.z);
-        let first = x <= y && x <= z;
-        let second = !(x <= y) && y <= z;
-        let axis = u8::from(!first) * (2 - u8::from(second));
-        let t = if first {
-            x
-        } else if second {
-            y
-        } else {
-            z
-        };
-        Key { t, axis }
-    }
-
-    /// [`Walk::upper_sides`] for `planes` given as exact floats, as three
-    /// bits `x | y << 1 | z << 2`.
-    #[inline]
-    pub(crate) fn upper_sides(&self, planes: Vec3A, key: Key) -> u32 {
-        let t = (planes - self.origin) * self.inv_dir;
-        let kt = Vec3A::splat(key.t);
-        let lane = Vec3A::new(0.0, 1.0, 2.0).cmplt(Vec3A::splat(f32::from(key.axis)));
-        let crossed = t.cmplt(kt) | (t.cmpeq(kt) & lane);
-        let behind_start = planes.cmple(self.start);
-        // Moving up: above once crossed; moving down: above until crossed;
-        // not moving: where the start is.
-        ((behind_start & !(self.down & crossed)) | (self.up & crossed)).bitmask()
     }
 }

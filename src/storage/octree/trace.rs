@@ -3,7 +3,7 @@
 //! The tracer holds a position: the ray is, at the key it entered by, in a
 //! cube of the tree's grid. Inside a branch it finds the child holding the
 //! ray by comparing the midplanes' crossing keys with that key
-//! ([`Walk::upper_sides`]); an empty cube, whether an absent child or an
+//! (`Lanes::upper_sides`); an empty cube, whether an absent child or an
 //! empty 2x2x2 group of a brick, it leaves at the earliest key of its far
 //! planes ([`Walk::exit_of`]), stepping to the neighbouring cube of the same
 //! size. Both questions use the crossings and the order single steps use,
@@ -19,7 +19,8 @@ use glam::IVec3;
 use crate::geom::{IAabb, Ray, MAX_COORD};
 use crate::scene::{Hit, Scene, Traced};
 use crate::storage::octree::{brick_bit, BrickMaterials, Node, NodeKind, OctreeScene};
-use crate::storage::walk::{Key, Lanes, Walk};
+use crate::storage::octree::lanes::Lanes;
+use crate::storage::walk::{Key, Walk};
 
 /// Entries of the path: the largest root has side `2 * MAX_COORD` = 2^23,
 /// and halving it down to side-4 bricks takes depths 0 to 21.
@@ -87,7 +88,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                 steps: 0,
             };
         };
-        let lanes = walk.lanes();
+        let lanes = Lanes::of(&walk);
         let min = self.bounds.min;
         let leaves_region = walk.exit_of(region.min, region.max);
         // The region relative to the tree's corner.
