@@ -34,6 +34,18 @@ const PATH: usize = (MAX_DEPTH + 1).next_power_of_two();
 /// | z << 4` for `x, y, z` in `{0, 1}`.
 const GROUP: u64 = 0x0033_0033;
 
+/// `ONES[m]` is `m.count_ones()`: a branch's child rank in one load, where
+/// the target has no popcount instruction.
+const ONES: [u8; 256] = {
+    let mut ones = [0; 256];
+    let mut m = 0;
+    while m < 256 {
+        ones[m] = (m as u32).count_ones() as u8;
+        m += 1;
+    }
+    ones
+};
+
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
     fn bounds(&self) -> IAabb {
         self.bounds
@@ -121,7 +133,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                         if children & (1 << octant) == 0 {
                             break half_log;
                         }
-                        let rank = (u32::from(children) & ((1 << octant) - 1)).count_ones();
+                        let rank = u32::from(ONES[usize::from(children) & ((1 << octant) - 1)]);
                         depth += 1;
                         let index = first + rank;
                         path[depth % PATH] = index;
