@@ -266,7 +266,13 @@ impl Walk {
 
     /// [`Walk::settle`] for a ray moving toward `S` (+1 or -1) on `axis`.
     #[inline]
-    fn settle_toward<const S: i32>(&self, axis: usize, from: i32, limit: i32, key: Key) -> (i32, f32) {
+    fn settle_toward<const S: i32>(
+        &self,
+        axis: usize,
+        from: i32,
+        limit: i32,
+        key: Key,
+    ) -> (i32, f32) {
         let (o, inv) = (self.origin[axis], self.inv_dir[axis]);
         let crossing = |plane: i32| Key {
             t: (plane as f32 - o) * inv,

@@ -50,8 +50,9 @@ impl Lanes {
         // Without branches: which of the three comes first is what the
         // walk cannot predict.
         let (x, y, z) = (t.x, t.y, t.z);
-        let first = x <= y && x <= z;
-        let second = !(x <= y) && y <= z;
+        let x_before_y = x <= y;
+        let first = x_before_y && x <= z;
+        let second = !x_before_y && y <= z;
         let axis = u8::from(!first) * (2 - u8::from(second));
         let t = if first {
             x

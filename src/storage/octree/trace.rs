@@ -18,8 +18,8 @@ use glam::IVec3;
 
 use crate::geom::{IAabb, Ray, MAX_COORD};
 use crate::scene::{Hit, Scene, Traced};
-use crate::storage::octree::{brick_bit, BrickMaterials, Node, NodeKind, OctreeScene};
 use crate::storage::octree::lanes::Lanes;
+use crate::storage::octree::{brick_bit, BrickMaterials, Node, NodeKind, OctreeScene};
 use crate::storage::walk::{Key, Walk};
 
 /// Entries of the path: the largest root has side `2 * MAX_COORD` = 2^23,
@@ -240,7 +240,14 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
 /// 2^to_log holding the ray at `key`, halving once per level and deciding
 /// each axis' half by the side of the midplane the ray is on.
 #[inline]
-fn refine(lanes: &Lanes, key: Key, min: IVec3, corner: &mut IVec3, known_log: &mut u32, to_log: u32) {
+fn refine(
+    lanes: &Lanes,
+    key: Key,
+    min: IVec3,
+    corner: &mut IVec3,
+    known_log: &mut u32,
+    to_log: u32,
+) {
     while *known_log > to_log {
         *known_log -= 1;
         let half = 1 << *known_log;
