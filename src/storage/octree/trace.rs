@@ -91,14 +91,16 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         t_max: f32,
         mut visit: V,
     ) -> Traced {
-        let walk = (!region.is_empty())
-            .then(|| Walk::start(ray, &region))
-            .flatten();
-        let Some(walk) = walk else {
-            return Traced {
-                hit: None,
-                steps: 0,
-            };
+        let missed = Traced {
+            hit: None,
+            steps: 0,
+        };
+        if region.is_empty() {
+            return missed;
+        }
+        // (Bound straight from the call: no copy of the walk.)
+        let Some(walk) = Walk::start(ray, &region) else {
+            return missed;
         };
         let lanes = Lanes::of(&walk);
         let min = self.bounds.min;
