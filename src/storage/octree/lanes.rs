@@ -3,7 +3,7 @@
 //! order of the walk: where the ray leaves a box ([`Walk::exit_of`]) and on
 //! which side of three midplanes it is at a key. Built once per ray.
 
-use glam::{BVec3A, IVec3, Vec3A};
+use glam::{BVec3A, Vec3A};
 
 use crate::storage::walk::{Key, Walk};
 
@@ -24,16 +24,14 @@ impl Lanes {
     /// The lanes of `walk`.
     pub(crate) fn of(walk: &Walk) -> Lanes {
         let (origin, inv_dir, start, step) = walk.parts();
-        let up = step.cmpgt(IVec3::ZERO);
-        let down = step.cmplt(IVec3::ZERO);
-        let lanes = |b: glam::BVec3| BVec3A::new(b.x, b.y, b.z);
+        let step = step.as_vec3a();
         Lanes {
             origin: origin.into(),
             inv_dir: inv_dir.into(),
             start: start.as_vec3a(),
-            up: lanes(up),
-            down: lanes(down),
-            moving: lanes(up | down),
+            up: step.cmpgt(Vec3A::ZERO),
+            down: step.cmplt(Vec3A::ZERO),
+            moving: step.cmpne(Vec3A::ZERO),
         }
     }
 
