@@ -152,7 +152,8 @@ impl Walk {
         }
         let step = IVec3::from_array(step);
         let start = IVec3::from_array(start);
-        let mut walk = Walk {
+        // Built where it is returned (no copy of the walk on the way out).
+        let mut walk = Some(Walk {
             origin,
             dir,
             inv_dir,
@@ -167,9 +168,9 @@ impl Walk {
             steps: 0,
             up: step.cmpgt(IVec3::ZERO),
             moving: step.cmpne(IVec3::ZERO),
-        };
-        walk.enter()?;
-        Some(walk)
+        });
+        walk.as_mut()?.enter()?;
+        walk
     }
 
     /// Moves the walk from its start cell to the first cell inside the volume.
