@@ -2,16 +2,6 @@
 //! and a desktop build run the same code and give the same bits.
 
 #[inline]
-pub(crate) fn floor32(x: f32) -> f32 {
-    libm::floorf(x)
-}
-
-#[inline]
-pub(crate) fn ceil32(x: f32) -> f32 {
-    libm::ceilf(x)
-}
-
-#[inline]
 pub(crate) fn sqrt32(x: f32) -> f32 {
     libm::sqrtf(x)
 }
@@ -26,20 +16,14 @@ pub(crate) fn floor64(x: f64) -> f64 {
     libm::floor(x)
 }
 
-/// `to_cell(floor32(x))` without a call: truncate, then step down when the
-/// truncation rounded a negative non-integer up. Exactly equal for every
-/// `x`, NaN and infinities included (the subtraction saturates).
+/// `libm::floorf(x) as i32` (saturating, NaN becomes 0) without a call:
+/// truncate, then step down when the truncation rounded a negative
+/// non-integer up. Exactly equal for every `x`, NaN and infinities included
+/// (the subtraction saturates).
 #[inline]
 pub(crate) fn floor_cell(x: f32) -> i32 {
     let truncated = x as i32;
     truncated.saturating_sub(i32::from(truncated as f32 > x))
-}
-
-/// Converts a float cell coordinate to `i32`, saturating (NaN becomes 0).
-/// Callers clamp the result into the volume afterwards.
-#[inline]
-pub(crate) fn to_cell(x: f32) -> i32 {
-    x as i32
 }
 
 /// `v` as a `usize`, or `usize::MAX` when it does not fit (for the `const`

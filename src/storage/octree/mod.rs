@@ -4,8 +4,9 @@
 //!
 //! The node layout lives here; [`build`] fills it from a source (in caller
 //! buffers or fallible vectors, and on the rayon pool in [`build_par`]), and
-//! [`trace`] walks it: the shared cell walk (see `storage/walk.rs`), sped up
-//! by jumping over every empty node in one move. Because a jump lands
+//! [`trace`] walks it: the shared cell walk (see `storage/walk.rs`, asked
+//! in four-lane form through [`lanes`]), sped up by jumping over every
+//! empty node in one move. Because a jump lands
 //! exactly where single steps would, the octree returns the same hits as the
 //! dense array, bit for bit.
 
@@ -18,6 +19,7 @@ pub(crate) mod beam;
 pub(crate) mod build;
 #[cfg(feature = "rayon")]
 pub(crate) mod build_par;
+pub(crate) mod lanes;
 pub(crate) mod trace;
 
 /// Side of a leaf brick: 4x4x4 voxels, one `u64` of occupancy.

@@ -3,7 +3,7 @@
 //! The tracer holds a position: the ray is, at the key it entered by, in a
 //! cube of the tree's grid. Inside a branch it finds the child holding the
 //! ray by comparing the midplanes' crossing keys with that key
-//! ([`Walk::upper_sides`]); an empty cube, whether an absent child or an
+//! (`Lanes::upper_sides`); an empty cube, whether an absent child or an
 //! empty 2x2x2 group of a brick, it leaves at the earliest key of its far
 //! planes ([`Walk::exit_of`]), stepping to the neighbouring cube of the same
 //! size. Both questions use the crossings and the order single steps use,
@@ -18,6 +18,7 @@ use glam::IVec3;
 
 use crate::geom::{Cone, IAabb, Ray, MAX_COORD};
 use crate::scene::{Hit, Scene, Traced};
+use crate::storage::octree::lanes::Lanes;
 use crate::storage::octree::{brick_bit, BrickMaterials, Node, NodeKind, OctreeScene};
 use crate::storage::walk::{Key, Walk};
 
@@ -25,9 +26,25 @@ use crate::storage::walk::{Key, Walk};
 /// and halving it down to side-4 bricks takes depths 0 to 21.
 const MAX_DEPTH: usize = (2 * MAX_COORD as u32).trailing_zeros() as usize - 1;
 
+/// Entries of the path array: a power of two above `MAX_DEPTH`, so that
+/// indexing it modulo its length needs no bounds check.
+const PATH: usize = (MAX_DEPTH + 1).next_power_of_two();
+
 /// Occupancy bits of the 2x2x2 group at the brick's local origin: `x | y << 2
 /// | z << 4` for `x, y, z` in `{0, 1}`.
 const GROUP: u64 = 0x0033_0033;
+
+/// `ONES[m]` is `m.count_ones()`: a branch's child rank in one load, where
+/// the target has no popcount instruction.
+const ONES: [u8; 256] = {
+    let mut ones = [0; 256];
+    let mut m = 0;
+    while m < 256 {
+        ones[m] = (m as u32).count_ones() as u8;
+        m += 1;
+    }
+    ones
+};
 
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
     fn bounds(&self) -> IAabb {
@@ -84,25 +101,30 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         t_max: f32,
         mut visit: V,
     ) -> Traced {
-        let walk = (!region.is_empty())
-            .then(|| Walk::start_from(ray, &region, t_start))
-            .flatten();
-        let Some(walk) = walk else {
-            return Traced {
-                hit: None,
-                steps: 0,
-            };
+        let missed = Traced {
+            hit: None,
+            steps: 0,
         };
+        if region.is_empty() {
+            return missed;
+        }
+        // (Bound straight from the call: no copy of the walk.)
+        let Some(walk) = Walk::start_from(ray, &region, t_start) else {
+            return missed;
+        };
+        let lanes = Lanes::of(&walk);
         let min = self.bounds.min;
         let leaves_region = walk.exit_of(region.min, region.max);
         // The region relative to the tree's corner.
         let (region_lo, region_hi) = (region.min - min, region.max - min);
         let nodes = self.nodes.as_ref();
         let root_log = self.root_size.trailing_zeros();
-        // path[d] (d >= 1): index of the node at depth d holding the
-        // position, whose cube has side 2^(root_log - d); valid to `depth`.
-        let mut path = [0u32; MAX_DEPTH];
+        // path[d] (1 <= d <= depth): index of the node at depth d holding
+        // the position, whose cube has side 2^(root_log - d); `node` is the
+        // one at `depth` itself.
+        let mut path = [0u32; PATH];
         let mut depth = 0;
+        let mut node = self.root;
         // The position: the ray is, at `key`, in the cube of side
         // 2^known_log at `corner` (relative to `min`, where every cube of
         // the tree starts at a multiple of its side).
@@ -114,37 +136,34 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             // Down from `depth` to the deepest node holding the position;
             // the empty cube found there has side 2^empty_log.
             let empty_log = loop {
-                let node = if depth == 0 {
-                    self.root
-                } else {
-                    nodes[path[depth] as usize]
-                };
                 match node.0 {
                     NodeKind::Branch { children, first } => {
                         let half_log = root_log - depth as u32 - 1;
-                        refine(&walk, key, min, &mut corner, &mut known_log, half_log);
+                        refine(&lanes, key, min, &mut corner, &mut known_log, half_log);
                         let upper = (corner >> half_log) & 1;
                         let octant = (upper.x | upper.y << 1 | upper.z << 2) as u32;
                         if children & (1 << octant) == 0 {
                             break half_log;
                         }
-                        let rank = (u32::from(children) & ((1 << octant) - 1)).count_ones();
+                        let rank = u32::from(ONES[usize::from(children) & ((1 << octant) - 1)]);
                         depth += 1;
-                        path[depth] = first + rank;
+                        let index = first + rank;
+                        path[depth % PATH] = index;
+                        node = nodes[index as usize];
                     }
                     NodeKind::Solid(material) => {
-                        refine(&walk, key, min, &mut corner, &mut known_log, 0);
+                        refine(&lanes, key, min, &mut corner, &mut known_log, 0);
                         return self.hit(&walk, key, min + corner, material, steps);
                     }
                     NodeKind::Brick {
                         occupancy,
                         materials,
                     } => {
-                        refine(&walk, key, min, &mut corner, &mut known_log, 1);
+                        refine(&lanes, key, min, &mut corner, &mut known_log, 1);
                         if occupancy & GROUP << brick_bit(corner & 2) == 0 {
                             break 1;
                         }
-                        refine(&walk, key, min, &mut corner, &mut known_log, 0);
+                        refine(&lanes, key, min, &mut corner, &mut known_log, 0);
                         let bit = brick_bit(corner & 3);
                         if occupancy >> bit & 1 == 0 {
                             break 0;
@@ -157,7 +176,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             // Leave the empty cube through its first far-plane crossing.
             let cube = corner >> empty_log << empty_log;
             let side = 1 << empty_log;
-            let exit = walk.exit_of(min + cube, min + cube + side);
+            let low = (min + cube).as_vec3a();
+            let exit = lanes.exit_of(low, low + side as f32);
             steps += 1;
             let empty = IAabb {
                 min: min + cube,
@@ -196,7 +216,14 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             // hold the new position.
             let changed = (corner[axis] ^ cube[axis]) as u32;
             let keep = (root_log - (u32::BITS - changed.leading_zeros())) as usize;
-            depth = depth.min(keep);
+            if keep < depth {
+                depth = keep;
+                node = if depth == 0 {
+                    self.root
+                } else {
+                    nodes[path[depth % PATH] as usize]
+                };
+            }
             key = exit;
         }
     }
@@ -225,11 +252,19 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
 /// 2^to_log holding the ray at `key`, halving once per level and deciding
 /// each axis' half by the side of the midplane the ray is on.
 #[inline]
-fn refine(walk: &Walk, key: Key, min: IVec3, corner: &mut IVec3, known_log: &mut u32, to_log: u32) {
+fn refine(
+    lanes: &Lanes,
+    key: Key,
+    min: IVec3,
+    corner: &mut IVec3,
+    known_log: &mut u32,
+    to_log: u32,
+) {
     while *known_log > to_log {
         *known_log -= 1;
-        let half = IVec3::splat(1 << *known_log);
-        let upper = walk.upper_sides(min + *corner + half, key);
-        *corner += IVec3::select(upper, half, IVec3::ZERO);
+        let half = 1 << *known_log;
+        let planes = (min + *corner + half).as_vec3a();
+        let upper = lanes.upper_sides(planes, key) as i32;
+        *corner += IVec3::new(upper & 1, upper >> 1 & 1, upper >> 2) << *known_log;
     }
 }

@@ -1,0 +1,257 @@
+//! Where a walk begins: the start cell and its keys (the start rule), the
+//! entry into the volume by the robust slab test in key form, and the
+//! placement at a later key for a walk that begins at a known clear
+//! distance. Every coordinate is settled by exact key comparisons, so a
+//! walk begun anywhere is in the cell single steps from the start reach.
+
+use glam::IVec3;
+
+use crate::geom::{IAabb, Ray};
+use crate::math::floor_cell;
+use crate::storage::walk::{Key, Walk};
+
+impl Walk {
+    /// Starts a walk of `ray` through the volume `bounds`, or `None` when the
+    /// ray misses it. Implements the robust slab test of Williams et al.
+    /// 2005 in key form: the ray is inside once it has crossed the near plane
+    /// of every axis, and misses if it crosses a far plane first.
+    pub(crate) fn start(ray: &Ray, bounds: &IAabb) -> Option<Walk> {
+        Walk::begin(ray, bounds, Key::BEFORE)
+    }
+
+    /// [`Walk::start`], but placed where the ray is at the key `(t_start,
+    /// x)` if it enters the volume before that: in the cell reached after
+    /// every crossing strictly before that key, entered by the latest of
+    /// its per-axis entry crossings, as single steps would leave it. `None`
+    /// when the ray has left the volume by then. Walking on from there finds
+    /// the same hit as walking from the start, provided no solid cell is
+    /// entered before `t_start`.
+    pub(crate) fn start_from(ray: &Ray, bounds: &IAabb, t_start: f32) -> Option<Walk> {
+        if t_start == f32::INFINITY {
+            return None;
+        }
+        // At 0 or before, the start is already where the ray is.
+        let not_before = if t_start > 0.0 {
+            Key {
+                t: t_start,
+                axis: 0,
+            }
+        } else {
+            Key::BEFORE
+        };
+        Walk::begin(ray, bounds, not_before)
+    }
+
+    /// The walk in its first cell inside `bounds` at or after `not_before`.
+    fn begin(ray: &Ray, bounds: &IAabb, not_before: Key) -> Option<Walk> {
+        let (origin, dir, inv_dir) = (ray.origin(), ray.dir(), ray.inv_dir());
+        let mut step = [0; 3];
+        let mut start = [0; 3];
+        let mut start_keys = [Key::BEFORE; 3];
+        for axis in 0..3 {
+            let (o, d) = (origin[axis], dir[axis]);
+            // An infinite reciprocal (a subnormal component) would turn a
+            // crossing at distance 0 into NaN; such an axis never reaches a
+            // plane in f32 anyway, so it counts as not moving.
+            let moving = d != 0.0 && inv_dir[axis].is_finite();
+            let s = i32::from(moving && d > 0.0) - i32::from(moving && d < 0.0);
+            // The start cell's entry plane is floor(o) moving up, ceil(o)
+            // moving down: the origin lies on it exactly when it is an
+            // integer, and then a ray moving down starts in the cell below.
+            // (Saturated cells of huge origins lie outside every volume.)
+            let floor = floor_cell(o);
+            let on_plane = moving && floor as f32 == o;
+            start[axis] = floor.saturating_sub(i32::from(on_plane && s < 0));
+            if on_plane {
+                start_keys[axis] = Key {
+                    t: 0.0,
+                    axis: axis as u8,
+                };
+            }
+            step[axis] = s;
+        }
+        let step = IVec3::from_array(step);
+        let start = IVec3::from_array(start);
+        // Built where it is returned (no copy of the walk on the way out).
+        let mut walk = Some(Walk {
+            origin,
+            dir,
+            inv_dir,
+            step,
+            start,
+            start_keys,
+            lo: bounds.min,
+            hi: bounds.max,
+            cell: start,
+            key: Key::BEFORE,
+            next_t: [f32::INFINITY; 3],
+            steps: 0,
+            up: step.cmpgt(IVec3::ZERO),
+            moving: step.cmpne(IVec3::ZERO),
+        });
+        walk.as_mut()?.enter(not_before)?;
+        walk
+    }
+
+    /// Moves the walk from its start cell to the first cell inside the
+    /// volume, or to the cell the ray is in at `not_before` if it enters
+    /// earlier.
+    #[inline]
+    fn enter(&mut self, not_before: Key) -> Option<()> {
+        let (lo, hi, start) = (self.lo, self.hi, self.start);
+        // The key of entering the volume: the latest of the per-axis entries.
+        let mut key_in = Key::BEFORE;
+        let mut entry_axis = 3;
+        let mut inside = [false; 3];
+        for axis in 0..3 {
+            let (s, c) = (self.step[axis], start[axis]);
+            inside[axis] = lo[axis] <= c && c < hi[axis];
+            let key = if inside[axis] {
+                self.start_keys[axis]
+            } else if s > 0 && c < lo[axis] {
+                self.crossing(axis, lo[axis])
+            } else if s < 0 && c >= hi[axis] {
+                self.crossing(axis, hi[axis])
+            } else {
+                return None; // outside on an axis and not moving toward it
+            };
+            if key_in.lt(key) {
+                key_in = key;
+                entry_axis = axis;
+            }
+        }
+        if key_in.t == f32::INFINITY {
+            return None;
+        }
+        if key_in.lt(not_before) {
+            return self.settle_all(not_before);
+        }
+        // Only a near-plane crossing moves a cell; start keys do not.
+        if entry_axis < 3 && !inside[entry_axis] {
+            let a = entry_axis;
+            // Missed: another axis' far plane comes first. (What settling
+            // would find, cheaper: half the rays of a frame miss.)
+            for b in (0..3).filter(|&b| b != a && self.step[b] != 0) {
+                let far = if self.step[b] > 0 { hi[b] } else { lo[b] };
+                if self.crossing(b, far).lt(key_in) {
+                    return None;
+                }
+            }
+            self.cell[a] = if self.step[a] > 0 { lo[a] } else { hi[a] - 1 };
+            for b in (0..3).filter(|&b| b != a && self.step[b] != 0) {
+                let s = self.step[b];
+                let (near, far) = if s > 0 {
+                    (lo[b], hi[b] - 1)
+                } else {
+                    (hi[b] - 1, lo[b])
+                };
+                let from = if inside[b] { start[b] } else { near };
+                self.cell[b] = self.settle(b, from, far + s, key_in).0;
+            }
+            if !self.inside() {
+                return None;
+            }
+        }
+        self.key = key_in;
+        self.refresh_next();
+        Some(())
+    }
+
+    /// Places the walk, inside the volume by `key`, in the cell it is in at
+    /// `key`: each moving axis settled from its first coordinate inside the
+    /// volume, the cell's key the latest of their entry crossings. `None`
+    /// when the ray has left the volume by `key`.
+    fn settle_all(&mut self, key: Key) -> Option<()> {
+        let mut entered = Key::BEFORE;
+        for axis in 0..3 {
+            let s = self.step[axis];
+            if s == 0 {
+                continue;
+            }
+            let (lo, hi) = (self.lo[axis], self.hi[axis]);
+            let (near, far) = if s > 0 { (lo, hi - 1) } else { (hi - 1, lo) };
+            let from = if (lo..hi).contains(&self.start[axis]) {
+                self.start[axis]
+            } else {
+                near
+            };
+            let (c, _) = self.settle(axis, from, far + s, key);
+            if c == far + s {
+                return None;
+            }
+            self.cell[axis] = c;
+            let entry = self.entry_key(axis, c);
+            if entered.lt(entry) {
+                entered = entry;
+            }
+        }
+        self.key = entered;
+        self.refresh_next();
+        Some(())
+    }
+
+    /// Key of the crossing that enters coordinate `c` on a moving `axis`:
+    /// the start key for the start coordinate, else the plane behind `c`.
+    fn entry_key(&self, axis: usize, c: i32) -> Key {
+        if c == self.start[axis] {
+            self.start_keys[axis]
+        } else {
+            self.crossing(axis, self.exit_plane(axis, c) - self.step[axis])
+        }
+    }
+
+    /// The coordinate on moving axis `axis` (not the axis of `key`) that the
+    /// ray is in at `key`: the one with `entry < key < exit`, searched from
+    /// `from` forward, stopping at `limit`; and the time of its exit
+    /// crossing. Starts from the coordinate of the point at `key.t`, then
+    /// corrects it with exact key comparisons, so the answer is the one
+    /// single steps would reach.
+    fn settle(&self, axis: usize, from: i32, limit: i32, key: Key) -> (i32, f32) {
+        if self.step[axis] > 0 {
+            self.settle_toward::<1>(axis, from, limit, key)
+        } else {
+            self.settle_toward::<-1>(axis, from, limit, key)
+        }
+    }
+
+    /// [`Walk::settle`] for a ray moving toward `S` (+1 or -1) on `axis`.
+    #[inline]
+    fn settle_toward<const S: i32>(
+        &self,
+        axis: usize,
+        from: i32,
+        limit: i32,
+        key: Key,
+    ) -> (i32, f32) {
+        let (o, inv) = (self.origin[axis], self.inv_dir[axis]);
+        let crossing = |plane: i32| Key {
+            t: (plane as f32 - o) * inv,
+            axis: axis as u8,
+        };
+        // Moving up a cell is entered through its lower plane and left
+        // through its upper one; moving down the other way round.
+        let exit_plane = |c: i32| if S > 0 { c + 1 } else { c };
+        let entry_plane = |c: i32| if S > 0 { c } else { c + 1 };
+        let span = i64::from(limit - from) * i64::from(S);
+        let guess = floor_cell(o + key.t * self.dir[axis]);
+        let ahead = ((i64::from(guess) - i64::from(from)) * i64::from(S)).clamp(0, span);
+        let mut c = from + (ahead as i32) * S;
+        while c != from {
+            let entry = if c == self.start[axis] {
+                self.start_keys[axis]
+            } else {
+                crossing(entry_plane(c))
+            };
+            if entry.lt(key) {
+                break;
+            }
+            c -= S;
+        }
+        let mut exit = crossing(exit_plane(c));
+        while c != limit && exit.lt(key) {
+            c += S;
+            exit = crossing(exit_plane(c));
+        }
+        (c, exit.t)
+    }
+}
