@@ -218,3 +218,6 @@ impl DenseScene<alloc::vec::Vec<u8>> {
         })
     }
 }
+
+#[cfg(test)]
+mod tests;
