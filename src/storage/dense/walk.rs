@@ -17,7 +17,7 @@
 //! octree starts at its occupied box the same way). The debug view's walk
 //! visits every cell of the volume with `Walk::step`.
 
-use glam::IVec3;
+use glam::{BVec3A, IVec3, Vec3A, Vec3Swizzles};
 
 use crate::geom::{Face, IAabb, Ray};
 use crate::scene::{Hit, Traced};
@@ -136,7 +136,7 @@ impl<B: AsRef<[u8]>> DenseScene<B> {
         let Some(Entry {
             cell,
             step,
-            mut next_t,
+            next_t,
             key,
         }) = Entry::new(ray, &region)
         else {
@@ -153,68 +153,95 @@ impl<B: AsRef<[u8]>> DenseScene<B> {
         let strides = [1, size.x as usize, size.x as usize * size.y as usize];
         let (o, inv) = (ray.origin().to_array(), ray.inv_dir().to_array());
         let (lo, hi) = (region.min.to_array(), region.max.to_array());
-        // Per axis: the plane crossed after the next one, its increment,
-        // the steps left inside the region, the index stride.
-        let mut plane = [0.0f32; 3];
+        // Per axis: the crossing after the next one (`after`), the plane
+        // after that one and its increment, the steps left inside the
+        // region. An axis the ray does not move along crosses nothing: its
+        // planes are 1 * inf away.
+        let mut after = [f32::INFINITY; 3];
+        let mut plane = [1.0f32; 3];
         let mut dplane = [0.0f32; 3];
-        let mut left = [0i32; 3];
-        let mut stride = [0usize; 3];
+        let mut origin = [0.0f32; 3];
+        let mut inv_dir = [f32::INFINITY; 3];
+        let mut left = [0.0f32; 3];
+        // The index stride of a step, by the bitmask of its axis' lane.
+        let mut stride = [0usize; 8];
         for a in 0..3 {
             let down = step[a] < 0;
+            // Below 2^24: exact in f32.
+            left[a] = if down {
+                cell[a] - lo[a]
+            } else {
+                hi[a] - 1 - cell[a]
+            } as f32;
+            if step[a] == 0 {
+                continue;
+            }
             // Exit plane of the current cell, then one further.
             let (exit, d) = if down {
                 (cell[a], -1)
             } else {
                 (cell[a] + 1, 1)
             };
-            plane[a] = (exit + d) as f32;
+            after[a] = ((exit + d) as f32 - o[a]) * inv[a];
+            plane[a] = (exit + 2 * d) as f32;
             dplane[a] = d as f32;
-            left[a] = if down {
-                cell[a] - lo[a]
-            } else {
-                hi[a] - 1 - cell[a]
-            };
-            stride[a] = if down {
+            origin[a] = o[a];
+            inv_dir[a] = inv[a];
+            stride[1 << a] = if down {
                 strides[a].wrapping_neg()
             } else {
                 strides[a]
             };
         }
+        let (origin, inv_dir) = (Vec3A::from_array(origin), Vec3A::from_array(inv_dir));
+        let dplane = Vec3A::from_array(dplane);
+        let mut t = Vec3A::from_array(next_t);
+        let mut after = Vec3A::from_array(after);
+        let mut plane = Vec3A::from_array(plane);
+        let mut left = Vec3A::from_array(left);
         // Giving up at +inf too: a crossing never reached ends the walk.
-        let limit = t_max.min(f32::MAX);
+        let limit = Vec3A::splat(t_max.min(f32::MAX));
+        // Lanes that win a tie against the lane after (x vs y, y vs z) and
+        // the lane after that (x vs z): the lower axis.
+        let ties_next = BVec3A::new(true, true, false);
+        let ties_last = BVec3A::new(true, false, false);
         let mut steps = 0;
         loop {
-            // The earliest crossing, ties to the lowest axis.
-            let a01 = usize::from(next_t[1] < next_t[0]);
-            let t01 = if next_t[1] < next_t[0] {
-                next_t[1]
-            } else {
-                next_t[0]
-            };
-            let axis = if next_t[2] < t01 { 2 } else { a01 };
-            let t = next_t[axis];
-            if t > limit {
+            // The lane of the earliest crossing, ties to the lowest axis,
+            // without a branch.
+            let (next, last) = (t.yzx(), t.zxy());
+            let first = (t.cmplt(next) | (t.cmpeq(next) & ties_next))
+                & (t.cmplt(last) | (t.cmpeq(last) & ties_last));
+            if (t.cmpgt(limit) & first).any() {
                 return Traced { hit: None, steps };
             }
             steps += 1;
-            if left[axis] == 0 {
+            left -= Vec3A::select(first, Vec3A::ONE, Vec3A::ZERO);
+            if left.cmplt(Vec3A::ZERO).any() {
                 return Traced { hit: None, steps };
             }
-            left[axis] -= 1;
-            idx = idx.wrapping_add(stride[axis]);
-            next_t[axis] = (plane[axis] - o[axis]) * inv[axis];
-            plane[axis] += dplane[axis];
+            let lane = first.bitmask();
+            idx = idx.wrapping_add(stride[lane as usize & 7]);
+            // The crossing after the next, computed before the choice is
+            // known so that the choice only selects.
+            let ahead = (plane - origin) * inv_dir;
+            let entered = t;
+            t = Vec3A::select(first, after, t);
+            after = Vec3A::select(first, ahead, after);
+            plane += Vec3A::select(first, dplane, Vec3A::ZERO);
             let material = cells[idx];
             if material != 0 {
+                let axis = lane.trailing_zeros() as usize;
                 let key = Key {
-                    t,
+                    t: entered[axis],
                     axis: axis as u8,
                 };
+                let left = left.to_array();
                 let pos = core::array::from_fn(|a| {
                     if step[a] < 0 {
-                        lo[a] + left[a]
+                        lo[a] + left[a] as i32
                     } else {
-                        hi[a] - 1 - left[a]
+                        hi[a] - 1 - left[a] as i32
                     }
                 });
                 let hit = Entry::hit(&self.palette, pos, step, key, material);
