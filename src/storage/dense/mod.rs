@@ -174,7 +174,7 @@ impl<B: AsRef<[u8]>> Scene for DenseScene<B> {
     }
 
     fn trace_counted(&self, ray: &Ray) -> Traced {
-        self.walk(ray, f32::INFINITY)
+        self.walk::<false>(ray, f32::INFINITY)
     }
 
     /// Walks the whole volume (not only the occupied box) with single
@@ -184,7 +184,7 @@ impl<B: AsRef<[u8]>> Scene for DenseScene<B> {
     }
 
     fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        let hit = self.walk(ray, t_max).hit;
+        let hit = self.walk::<true>(ray, t_max).hit;
         hit.filter(|h| h.t <= t_max)
     }
 

@@ -88,7 +88,7 @@ fn the_dense_walk_finds_the_single_step_walks_hit() {
     for i in 0..200_000 {
         let ray = ray(&mut rng, &bounds);
         let expected = scene.walk_visiting(&ray, &mut |_| true).hit;
-        let got = scene.walk(&ray, f32::INFINITY).hit;
+        let got = scene.walk::<false>(&ray, f32::INFINITY).hit;
         assert_eq!(got, expected, "ray {i}: {ray:?}");
         if let Some(hit) = expected {
             assert_eq!(
@@ -102,7 +102,9 @@ fn the_dense_walk_finds_the_single_step_walks_hit() {
             Some(hit) if i % 2 == 0 => hit.t,
             _ => rng.range(0.0, 40.0),
         };
-        let within = scene.walk(&ray, reach).hit.filter(|h| h.t <= reach);
+        let within = scene.walk::<true>(&ray, reach).hit.filter(|h| h.t <= reach);
+        let unlimited = scene.walk::<false>(&ray, reach).hit.filter(|h| h.t <= reach);
+        assert_eq!(unlimited, within, "ray {i}: {ray:?}");
         assert_eq!(
             within,
             expected.filter(|h| h.t <= reach),

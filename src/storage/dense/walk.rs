@@ -121,9 +121,13 @@ fn hit(palette: &Palette, cell: IVec3, down: BVec3A, key: Key, material: u8) -> 
 
 impl<B: AsRef<[u8]>> DenseScene<B> {
     /// The first solid cell along `ray` in the occupied box, giving up once
-    /// the walk enters a cell farther than `t_max`.
+    /// the walk enters a cell farther than `t_max`: at that step when
+    /// `LIMITED`, else only when it finds a solid cell (keys only grow
+    /// along a walk, so that cell is beyond the limit too, and the walk
+    /// ends by leaving the box anyway). Giving up at +inf too: a crossing
+    /// never reached ends the walk.
     #[inline]
-    pub(super) fn walk(&self, ray: &Ray, t_max: f32) -> Traced {
+    pub(super) fn walk<const LIMITED: bool>(&self, ray: &Ray, t_max: f32) -> Traced {
         // Fields read in place: a copy of the box would be stored to the
         // stack and read back across the store, stalling every ray.
         let region = &self.occupied;
@@ -171,24 +175,26 @@ impl<B: AsRef<[u8]>> DenseScene<B> {
         for (a, s) in strides.into_iter().enumerate() {
             stride[1 << a] = if down.test(a) { s.wrapping_neg() } else { s };
         }
-        // Giving up at +inf too: a crossing never reached ends the walk.
-        let limit = Vec3A::splat(t_max.min(f32::MAX));
-        // Lanes that win a tie against the lane after (x vs y, y vs z) and
-        // the lane after that (x vs z): the lower axis.
-        let ties_next = BVec3A::new(true, true, false);
-        let ties_last = BVec3A::new(true, false, false);
+        let limit = t_max.min(f32::MAX);
+        let limits = Vec3A::splat(limit);
+        // The earliest lane, ties to the lowest axis, is the lane before
+        // both others: x if tx <= ty and tx <= tz, y if ty <= tz and
+        // ty < tx, z if tz < tx and tz < ty. With only `<=` compares, a
+        // strict `<` is the flip of the `<=` with its sides swapped.
+        let flip_a = BVec3A::new(false, false, true);
+        let flip_b = BVec3A::new(false, true, true);
         let mut steps = 0;
         loop {
-            // The lane of the earliest crossing.
-            let (next, last) = (t.yzx(), t.zxy());
-            let first = (t.cmplt(next) | (t.cmpeq(next) & ties_next))
-                & (t.cmplt(last) | (t.cmpeq(last) & ties_last));
-            if (t.cmpgt(limit) & first).any() {
+            // [tx <= ty, ty <= tz, tz < tx] & [tx <= tz, ty < tx, tz < ty].
+            let a = t.xyx().cmple(t.yzz()) ^ flip_a;
+            let b = t.xxy().cmple(t.zyz()) ^ flip_b;
+            let first = a & b;
+            if LIMITED && (t.cmpgt(limits) & first).any() {
                 return Traced { hit: None, steps };
             }
             steps += 1;
             left -= Vec3A::select(first, Vec3A::ONE, Vec3A::ZERO);
-            if left.cmplt(Vec3A::ZERO).any() {
+            if left.is_negative_bitmask() != 0 {
                 return Traced { hit: None, steps };
             }
             let lane = first.bitmask();
@@ -207,6 +213,9 @@ impl<B: AsRef<[u8]>> DenseScene<B> {
                     t: entered[axis],
                     axis: axis as u8,
                 };
+                if key.t > limit {
+                    return Traced { hit: None, steps };
+                }
                 let pos = Vec3A::select(down, lo + left, hi - 1.0 - left).as_ivec3();
                 let hit = hit(&self.palette, pos, down, key, material);
                 return Traced { hit, steps };
