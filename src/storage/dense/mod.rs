@@ -10,6 +10,7 @@ use crate::geom::{IAabb, Ray};
 use crate::scene::{Hit, Scene, Traced};
 use crate::voxel::{Palette, VoxelSource};
 
+mod entry;
 mod walk;
 
 /// A dense voxel volume: one material byte per position of its bounds.

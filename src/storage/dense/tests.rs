@@ -103,7 +103,10 @@ fn the_dense_walk_finds_the_single_step_walks_hit() {
             _ => rng.range(0.0, 40.0),
         };
         let within = scene.walk::<true>(&ray, reach).hit.filter(|h| h.t <= reach);
-        let unlimited = scene.walk::<false>(&ray, reach).hit.filter(|h| h.t <= reach);
+        let unlimited = scene
+            .walk::<false>(&ray, reach)
+            .hit
+            .filter(|h| h.t <= reach);
         assert_eq!(unlimited, within, "ray {i}: {ray:?}");
         assert_eq!(
             within,

@@ -23,6 +23,7 @@ use glam::{BVec3A, IVec3, Vec3A, Vec3Swizzles};
 
 use crate::geom::{Face, IAabb, Ray};
 use crate::scene::{Hit, Traced};
+use crate::storage::dense::entry::Entry;
 use crate::storage::dense::DenseScene;
 use crate::storage::walk::{Key, Walk};
 use crate::voxel::Palette;
@@ -31,80 +32,6 @@ const MISS: Traced = Traced {
     hit: None,
     steps: 0,
 };
-
-/// Where a walk starts: its cell, the axes it moves along and those of
-/// them it moves down, the crossing times of the cell's exit planes and
-/// the key it entered the cell by.
-struct Entry {
-    cell: IVec3,
-    moving: BVec3A,
-    down: BVec3A,
-    next_t: Vec3A,
-    key: Key,
-}
-
-impl Entry {
-    /// The entry into `region` that [`Walk::start`] finds, or `None` when
-    /// the ray misses it.
-    #[inline]
-    fn new(ray: &Ray, region: &IAabb) -> Option<Entry> {
-        if let Some(entry) = Entry::inside(ray, region) {
-            return Some(entry);
-        }
-        let walk = Walk::start(ray, region)?;
-        let step = walk.step_dir();
-        Some(Entry {
-            cell: walk.cell(),
-            moving: BVec3A::new(step.x != 0, step.y != 0, step.z != 0),
-            down: BVec3A::new(step.x < 0, step.y < 0, step.z < 0),
-            next_t: Vec3A::from_array(walk.next_t()),
-            key: walk.key(),
-        })
-    }
-
-    /// [`Walk::start`] for an origin strictly inside `region` on every
-    /// axis, the common case of secondary rays, without its general
-    /// search: the start cell (floor of the origin, or ceil - 1 moving
-    /// down) is then inside, the walk enters nothing, and its key is the
-    /// start key of the highest moving axis whose origin lies on a plane.
-    /// Every coordinate is then within +-2^22, where `floor` and `ceil` are
-    /// exact on three lanes at once.
-    #[inline]
-    fn inside(ray: &Ray, region: &IAabb) -> Option<Entry> {
-        let o = Vec3A::from(ray.origin());
-        let strictly_inside =
-            (o.cmpgt(region.min.as_vec3a()) & o.cmplt(region.max.as_vec3a())).all();
-        if !strictly_inside {
-            return None;
-        }
-        let (d, inv) = (Vec3A::from(ray.dir()), Vec3A::from(ray.inv_dir()));
-        let floor = o.floor();
-        let moving = d.cmpne(Vec3A::ZERO) & inv.is_finite_mask();
-        let down = moving & d.cmplt(Vec3A::ZERO);
-        let cell = Vec3A::select(down, o.ceil() - 1.0, floor);
-        let exit = Vec3A::select(down, cell, cell + 1.0);
-        let next_t = Vec3A::select(moving, (exit - o) * inv, Vec3A::INFINITY);
-        let on_plane = (moving & floor.cmpeq(o)).bitmask();
-        let key = if on_plane == 0 {
-            Key {
-                t: f32::NEG_INFINITY,
-                axis: 0,
-            }
-        } else {
-            Key {
-                t: 0.0,
-                axis: (31 - on_plane.leading_zeros()) as u8,
-            }
-        };
-        Some(Entry {
-            cell: cell.as_ivec3(),
-            moving,
-            down,
-            next_t,
-            key,
-        })
-    }
-}
 
 /// The hit on `material` in `cell`, entered by `key` on a walk moving down
 /// the axes of `down`.
