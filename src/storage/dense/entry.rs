@@ -180,7 +180,8 @@ impl Entry {
                 // The guess: the cell of the entry point, within
                 // `from..=limit`; checked, not trusted.
                 let at = o[b] + key_in.t * d[b];
-                if !(at.abs() < EXACT) {
+                // (NaN too: an entry time times a tiny direction.)
+                if at.is_nan() || at.abs() >= EXACT {
                     return None;
                 }
                 let guess = at as i32 - i32::from((at as i32 as f32) > at);

@@ -72,7 +72,9 @@ fn ray(rng: &mut Rng, bounds: &IAabb) -> Ray {
 fn the_dense_walk_finds_the_single_step_walks_hit() {
     let palette = Palette::new(&[U8Vec3::ZERO, U8Vec3::ONE, U8Vec3::splat(2)]);
     let solid = |p: IVec3| {
-        let h = (p.x * 73_856_093 ^ p.y * 19_349_663 ^ p.z * 83_492_791) as u32;
+        let h = (p.x.wrapping_mul(73_856_093)
+            ^ p.y.wrapping_mul(19_349_663)
+            ^ p.z.wrapping_mul(83_492_791)) as u32;
         let inner = p.cmpge(IVec3::new(-4, -1, -6)).all() && p.cmplt(IVec3::new(9, 6, 2)).all();
         if inner && h % 7 == 0 {
             1 + (h % 2) as u8
