@@ -15,9 +15,9 @@
 //!
 //! Tracing walks only the occupied box: outside it every cell is empty, and
 //! `Walk::start` enters it at the crossing single steps enter it by (the
-//! octree starts at its occupied box the same way); an origin strictly
-//! inside the box takes a shortcut with the same result. The debug view's
-//! walk visits every cell of the volume with `Walk::step`.
+//! octree starts at its occupied box the same way); `entry.rs` finds that
+//! entry by shortcuts where it can. The debug view's walk visits every
+//! cell of the volume with `Walk::step`.
 
 use glam::{BVec3A, IVec3, Vec3A, Vec3Swizzles};
 
