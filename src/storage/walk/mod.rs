@@ -160,6 +160,20 @@ impl Walk {
         self.cell
     }
 
+    /// Per axis: +1, -1, or 0 for an axis the ray does not move along.
+    #[inline]
+    pub(crate) fn step_dir(&self) -> IVec3 {
+        self.step
+    }
+
+    /// Crossing time of each axis' exit plane from the current cell (+inf
+    /// on an axis the ray does not move along): the state a specialised
+    /// loop continues single steps from.
+    #[inline]
+    pub(crate) fn next_t(&self) -> [f32; 3] {
+        self.next_t
+    }
+
     /// Moves made so far.
     #[inline]
     pub(crate) fn steps(&self) -> u32 {

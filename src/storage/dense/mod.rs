@@ -1,13 +1,17 @@
 //! `DenseScene`: one byte per voxel in one flat array, walked cell by cell
-//! with Amanatides & Woo's traversal. The honest, simple baseline.
+//! with Amanatides & Woo's traversal. The honest, simple baseline: its only
+//! skip is the box around the solid voxels, found once at build; the walk
+//! itself lives in `walk.rs`.
 
 use glam::IVec3;
 
 use crate::error::Error;
 use crate::geom::{IAabb, Ray};
 use crate::scene::{Hit, Scene, Traced};
-use crate::storage::walk::Walk;
 use crate::voxel::{Palette, VoxelSource};
+
+mod entry;
+mod walk;
 
 /// A dense voxel volume: one material byte per position of its bounds.
 ///
@@ -17,10 +21,12 @@ use crate::voxel::{Palette, VoxelSource};
 ///
 /// # Guarantees
 /// `cells.len()` equals the volume of `bounds`, laid out x fastest, then y,
-/// then z; bounds are non-empty and within [`crate::MAX_COORD`].
+/// then z; bounds are non-empty and within [`crate::MAX_COORD`]; every
+/// solid cell lies in `occupied` (empty when there is none).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct DenseScene<B> {
     bounds: IAabb,
+    occupied: IAabb,
     cells: B,
     palette: Palette,
 }
@@ -28,12 +34,43 @@ pub struct DenseScene<B> {
 impl<B> DenseScene<B> {
     /// Assembles a scene from cells already laid out for `bounds`.
     #[cfg(feature = "alloc")]
-    pub(crate) fn from_parts(bounds: IAabb, cells: B, palette: Palette) -> Self {
+    pub(crate) fn from_parts(bounds: IAabb, cells: B, palette: Palette) -> Self
+    where
+        B: AsRef<[u8]>,
+    {
         DenseScene {
             bounds,
+            occupied: occupied_box(bounds, cells.as_ref()),
             cells,
             palette,
         }
+    }
+}
+
+/// The tight box of the solid cells of `cells` (laid out for `bounds`), or
+/// an empty box at `bounds.min` when every cell is empty.
+fn occupied_box(bounds: IAabb, cells: &[u8]) -> IAabb {
+    let size = bounds.size().as_uvec3();
+    let row_len = size.x as usize;
+    let mut lo = IVec3::MAX;
+    let mut hi = IVec3::MIN;
+    for (r, row) in cells.chunks_exact(row_len).enumerate() {
+        // OR of the row in one pass (vectorised); positions only when solid.
+        if row.iter().fold(0u8, |a, &b| a | b) == 0 {
+            continue;
+        }
+        let first = row.iter().position(|&b| b != 0).unwrap_or(0);
+        let last = row.iter().rposition(|&b| b != 0).unwrap_or(0);
+        let (y, z) = (r % size.y as usize, r / size.y as usize);
+        let pos_lo = IVec3::new(first as i32, y as i32, z as i32);
+        let pos_hi = IVec3::new(last as i32, y as i32, z as i32);
+        lo = lo.min(pos_lo);
+        hi = hi.max(pos_hi);
+    }
+    if lo.x > hi.x {
+        IAabb::new(bounds.min, bounds.min)
+    } else {
+        IAabb::new(bounds.min + lo, bounds.min + hi + 1)
     }
 }
 
@@ -75,6 +112,7 @@ impl<'a> DenseScene<&'a [u8]> {
         source.fill_box(bounds, cells);
         Ok(Self {
             bounds,
+            occupied: occupied_box(bounds, cells),
             cells,
             palette: source.palette().clone(),
         })
@@ -108,7 +146,7 @@ impl DenseScene<alloc::vec::Vec<u8>> {
 impl<B: AsRef<[u8]>> DenseScene<B> {
     /// Index of `pos` in the flat array; `pos` must be inside the bounds.
     #[inline]
-    fn index(&self, pos: IVec3) -> usize {
+    pub(super) fn index(&self, pos: IVec3) -> usize {
         let local = (pos - self.bounds.min).as_uvec3();
         let size = self.bounds.size().as_uvec3();
         local.x as usize + size.x as usize * (local.y as usize + size.y as usize * local.z as usize)
@@ -131,59 +169,23 @@ impl<B: AsRef<[u8]>> DenseScene<B> {
     }
 }
 
-impl<B: AsRef<[u8]>> DenseScene<B> {
-    /// The cell walk, showing `visit` each empty cell it leaves and giving up
-    /// once it enters a cell farther than `t_max`; monomorphized so that
-    /// tracing without a visitor pays nothing for it.
-    #[inline]
-    fn walk<V: FnMut(IAabb) -> bool>(&self, ray: &Ray, t_max: f32, mut visit: V) -> Traced {
-        let Some(mut walk) = Walk::start(ray, &self.bounds) else {
-            return Traced {
-                hit: None,
-                steps: 0,
-            };
-        };
-        let cells = self.cells.as_ref();
-        loop {
-            let pos = walk.cell();
-            let material = cells[self.index(pos)];
-            if material != 0 {
-                let (face, t) = walk.entry();
-                let hit = Hit::from_palette(&self.palette, pos, face, t, material);
-                return Traced {
-                    hit,
-                    steps: walk.steps(),
-                };
-            }
-            let cell = IAabb {
-                min: pos,
-                max: pos + 1,
-            };
-            if !visit(cell) || !walk.step() || walk.key().t > t_max {
-                return Traced {
-                    hit: None,
-                    steps: walk.steps(),
-                };
-            }
-        }
-    }
-}
-
 impl<B: AsRef<[u8]>> Scene for DenseScene<B> {
     fn bounds(&self) -> IAabb {
         self.bounds
     }
 
     fn trace_counted(&self, ray: &Ray) -> Traced {
-        self.walk(ray, f32::INFINITY, |_| true)
+        self.walk::<false>(ray, f32::INFINITY)
     }
 
+    /// Walks the whole volume (not only the occupied box) with single
+    /// steps, so the debug view shows every cell a ray crosses.
     fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced {
-        self.walk(ray, f32::INFINITY, visit)
+        self.walk_visiting(ray, visit)
     }
 
     fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        let hit = self.walk(ray, t_max, |_| true).hit;
+        let hit = self.walk::<true>(ray, t_max).hit;
         hit.filter(|h| h.t <= t_max)
     }
 
@@ -217,3 +219,6 @@ impl DenseScene<alloc::vec::Vec<u8>> {
         })
     }
 }
+
+#[cfg(test)]
+mod tests;
