@@ -1,4 +1,4 @@
-//! The dense walk against the single-step walk of `storage/walk.rs` (the
+//! The dense walk against the single-step walk of `storage/walk/` (the
 //! debug view's walk), on rays chosen to meet the walk's edge cases:
 //! origins on planes and far away, directions along axes and planes.
 

@@ -1,4 +1,4 @@
-//! The dense array's walk: the shared cell walk of `storage/walk.rs`,
+//! The dense array's walk: the shared cell walk of `storage/walk/`,
 //! entered as [`Walk::start`] enters, then stepped by a loop specialised
 //! for one flat array.
 //!

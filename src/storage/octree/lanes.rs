@@ -1,4 +1,4 @@
-//! `Lanes`: the octree's two questions of a ray's walk (`storage/walk.rs`)
+//! `Lanes`: the octree's two questions of a ray's walk (`storage/walk/`)
 //! in four-lane form, answered with exactly the crossings, start rule and
 //! order of the walk: where the ray leaves a box ([`Walk::exit_of`]) and on
 //! which side of three midplanes it is at a key. Built once per ray.

@@ -4,7 +4,7 @@
 //!
 //! The node layout lives here; [`build`] fills it from a source (in caller
 //! buffers or fallible vectors, and on the rayon pool in [`build_par`]), and
-//! [`trace`] walks it: the shared cell walk (see `storage/walk.rs`, asked
+//! [`trace`] walks it: the shared cell walk (see `storage/walk/`, asked
 //! in four-lane form through [`lanes`]), sped up by jumping over every
 //! empty node in one move. Because a jump lands
 //! exactly where single steps would, the octree returns the same hits as the
