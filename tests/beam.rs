@@ -87,6 +87,22 @@ proptest! {
     }
 
     #[test]
+    fn clear_distance_is_conservative_from_grid_points(
+        seed in any::<u64>(),
+        percent in 5u64..60,
+        from in (-9i32..9, -9i32..9, -9i32..9),
+        at in vec3(-6.0..6.0),
+        tile in (1u32..9, 1u32..9),
+    ) {
+        // A camera on planes, edges and corners of voxels, often touching a
+        // solid one (the seed paper's camera sits on a corner).
+        let from = Vec3::new(from.0 as f32, from.1 as f32, from.2 as f32);
+        let Some(camera) = camera(16, 12, from, at, 60.0) else { return Ok(()) };
+        let (tile_w, tile_h) = (tile.0.min(16), tile.1.min(12));
+        check_tile(&speckle(seed, percent), IAabb::centered(8), &camera, (0, 0, tile_w, tile_h))?;
+    }
+
+    #[test]
     fn clear_distance_is_conservative_on_the_terrain(
         seed in 0u64..1000,
         from in vec3(-40.0..40.0),

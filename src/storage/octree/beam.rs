@@ -49,15 +49,26 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         if self.occupied.is_empty() || cone.cos_half_angle.is_nan() || cone.cos_half_angle <= 0.0 {
             return 0.0;
         }
-        // A camera inside a solid voxel: every ray hits it at 0. (One point
-        // query instead of a walk down to the same voxel for every tile.)
+        // A camera touching a solid voxel (inside it, or on its surface):
+        // the answer is 0, which the walk below would also reach, but only
+        // after descending to that voxel for every tile. Up to eight cells
+        // touch the apex: on an axis where it lies on a plane, the cells on
+        // both sides.
         let cell = IVec3::new(
             floor_cell(cone.apex.x),
             floor_cell(cone.apex.y),
             floor_cell(cone.apex.z),
         );
-        if cell.as_vec3().cmplt(cone.apex).all() && self.material(cell) != 0 {
-            return 0.0;
+        let on_plane = cell.as_vec3().cmpeq(cone.apex);
+        let below = IVec3::select(on_plane, IVec3::ONE, IVec3::ZERO);
+        for corner in 0..8 {
+            let pick = IVec3::new(corner & 1, corner >> 1 & 1, corner >> 2 & 1);
+            if (pick & !below) != IVec3::ZERO {
+                continue;
+            }
+            if self.material(cell - pick) != 0 {
+                return 0.0;
+            }
         }
         let nodes = self.nodes.as_ref();
         let min = self.bounds.min;
