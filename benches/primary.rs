@@ -40,8 +40,8 @@ fn beams(scene: &impl Scene, camera: &Camera) -> f32 {
     let mut sum = 0.0;
     for ty in (0..h).step_by(TILE as usize) {
         for tx in (0..w).step_by(TILE as usize) {
-            let cone = camera.tile_cone(tx, ty, (tx + TILE).min(w), (ty + TILE).min(h));
-            sum += scene.clear_distance(&cone).min(1e9);
+            let frustum = camera.tile_frustum(tx, ty, (tx + TILE).min(w), (ty + TILE).min(h));
+            sum += frustum.map_or(0.0, |f| scene.clear_distance(&f)).min(1e9);
         }
     }
     sum
@@ -54,7 +54,9 @@ fn tiled(scene: &impl Scene, camera: &Camera) -> f32 {
     for ty in (0..h).step_by(TILE as usize) {
         for tx in (0..w).step_by(TILE as usize) {
             let (x1, y1) = ((tx + TILE).min(w), (ty + TILE).min(h));
-            let t0 = scene.clear_distance(&camera.tile_cone(tx, ty, x1, y1));
+            let t0 = camera
+                .tile_frustum(tx, ty, x1, y1)
+                .map_or(0.0, |f| scene.clear_distance(&f));
             for y in ty..y1 {
                 for x in tx..x1 {
                     let traced = scene.trace_from(&camera.get_ray(x, y), t0);

@@ -173,46 +173,6 @@ impl Ray {
     }
 }
 
-/// A circular cone of directions from one apex: every ray of a tile of
-/// pixels lies inside the cone of its camera (see `Camera::tile_cone`).
-///
-/// A storage may answer [`crate::Scene::clear_distance`] for it: a distance
-/// before which no ray inside the cone hits anything.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Cone {
-    /// Where every ray of the cone starts.
-    pub apex: Vec3,
-    /// Unit direction of the cone's axis.
-    pub axis: Vec3,
-    /// Cosine of the half-angle, in `(0, 1]`: a direction `d` is inside when
-    /// `d . axis >= cos_half_angle`.
-    pub cos_half_angle: f32,
-}
-
-impl Cone {
-    /// Whether the ball of `radius` around `center` may meet the cone. Never
-    /// `false` for a ball that meets it (a little slack covers rounding);
-    /// `true` for some that pass just outside.
-    #[must_use]
-    pub fn may_meet_ball(&self, center: Vec3, radius: f32) -> bool {
-        let v = center - self.apex;
-        let dist_sq = v.dot(v);
-        if dist_sq <= radius * radius {
-            return true;
-        }
-        let dist = sqrt32(dist_sq);
-        // The ball meets the cone when the angle between v and the axis is
-        // at most the half-angle plus the ball's angular radius beta
-        // (sin beta = radius / dist): cos(angle) >= cos(alpha + beta).
-        let cos_a = self.cos_half_angle;
-        let sin_a = sqrt32((1.0 - cos_a * cos_a).max(0.0));
-        let sin_b = radius / dist;
-        let cos_b = sqrt32((1.0 - sin_b * sin_b).max(0.0));
-        let cos_sum = cos_a * cos_b - sin_a * sin_b;
-        v.dot(self.axis) >= (cos_sum - 2e-6) * dist
-    }
-}
-
 /// Euclidean distance from `point` to the box `[min, max]` (0 inside it).
 #[must_use]
 pub(crate) fn distance_to_box(point: Vec3, min: Vec3, max: Vec3) -> f32 {

@@ -65,6 +65,7 @@ extern crate std;
 mod error;
 #[cfg(feature = "alloc")]
 mod fallible;
+mod frustum;
 mod geom;
 mod math;
 mod scene;
@@ -77,6 +78,7 @@ mod source;
 mod storage;
 
 pub use error::Error;
+pub use frustum::Frustum;
 pub use geom::{Face, IAabb, Ray, MAX_COORD};
 pub use render::camera::{Camera, CameraSettings, DEFAULT_FOV};
 pub use render::options::{Fog, Occlusion, RenderOptions, DEFAULT_SUN};

@@ -3,7 +3,8 @@
 
 use glam::IVec3;
 
-use crate::geom::{Cone, Face, IAabb, Ray};
+use crate::frustum::Frustum;
+use crate::geom::{Face, IAabb, Ray};
 use crate::voxel::{Palette, Voxel};
 
 /// The first solid voxel along a ray.
@@ -75,13 +76,14 @@ pub trait Scene {
     /// returns `false` the walk stops there and reports no hit.
     fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced;
 
-    /// A distance before which no ray from the cone's apex inside `cone`
-    /// hits a voxel: every such ray's hit, if any, has `t >= ` the answer.
+    /// A distance before which no ray from the frustum's apex inside
+    /// `frustum` hits a voxel: every such ray's hit, if any, has `t >=` the
+    /// answer.
     /// What lets a tile of primary rays skip the empty space they share.
     /// The default knows nothing and answers 0.
     #[inline]
-    fn clear_distance(&self, cone: &Cone) -> f32 {
-        let _ = cone;
+    fn clear_distance(&self, frustum: &Frustum) -> f32 {
+        let _ = frustum;
         0.0
     }
 
@@ -131,8 +133,8 @@ impl<S: Scene + ?Sized> Scene for &S {
         (**self).trace_within(ray, t_max)
     }
 
-    fn clear_distance(&self, cone: &Cone) -> f32 {
-        (**self).clear_distance(cone)
+    fn clear_distance(&self, frustum: &Frustum) -> f32 {
+        (**self).clear_distance(frustum)
     }
 
     fn trace_from(&self, ray: &Ray, t_start: f32) -> Traced {

@@ -26,7 +26,9 @@ fn check_tile<S: VoxelSource>(
     let scene = OctreeScene::build(source, bounds).unwrap();
     let voxels = solids(source, bounds);
     let (x1, y1) = (tx + tile_w, ty + tile_h);
-    let t0 = scene.clear_distance(&camera.tile_cone(tx, ty, x1, y1));
+    let t0 = camera
+        .tile_frustum(tx, ty, x1, y1)
+        .map_or(0.0, |f| scene.clear_distance(&f));
     prop_assert!(t0 >= 0.0, "negative clear distance {t0}");
     for y in ty..y1 {
         for x in tx..x1 {
@@ -120,7 +122,7 @@ proptest! {
 }
 
 #[test]
-fn a_clear_cone_skips_the_empty_space_before_the_surface() {
+fn a_clear_frustum_skips_the_empty_space_before_the_surface() {
     // Not only conservative but useful: looking down at a floor from 20
     // above, the tile's clear distance is most of the way there.
     let floor = voxtrace::FnSource::new(common::sources::palette(1), |p: voxtrace::glam::IVec3| {
@@ -136,6 +138,6 @@ fn a_clear_cone_skips_the_empty_space_before_the_surface() {
         20.0,
     )
     .unwrap();
-    let t0 = scene.clear_distance(&camera.tile_cone(6, 6, 10, 10));
+    let t0 = scene.clear_distance(&camera.tile_frustum(6, 6, 10, 10).unwrap());
     assert!((15.0..=20.0).contains(&t0), "clear distance {t0}");
 }

@@ -5,7 +5,8 @@
 use glam::Vec3;
 
 use crate::error::Error;
-use crate::geom::{Cone, Ray};
+use crate::frustum::Frustum;
+use crate::geom::Ray;
 use crate::math::{sqrt32, tan32};
 
 /// The seven camera parameters of the seed paper.
@@ -206,37 +207,22 @@ impl Camera {
         self.ray_to(self.sample(x, y))
     }
 
-    /// The cone from the camera that holds every ray through the pixels
-    /// `x0..x1` by `y0..y1`, at any point of their area (so anti-aliasing
-    /// samples too): its axis is the mean of the four corner directions,
-    /// its half-angle the widest corner's, widened a little for rounding.
-    /// Rays through the area are positive combinations of the corner
-    /// directions, and a circular cone is convex, so it holds them all.
+    /// The frustum from the camera through the pixels `x0..x1` by
+    /// `y0..y1`, holding every ray through any point of their area (so
+    /// anti-aliasing samples too): the rays through the area are positive
+    /// combinations of the directions to its four corners. `None` for an
+    /// empty or degenerate rectangle.
     #[must_use]
-    pub fn tile_cone(&self, x0: u32, y0: u32, x1: u32, y1: u32) -> Cone {
-        let corner = |x: u32, y: u32| {
-            // Continuous coordinates: pixel i spans [i, i + 1).
-            let d = self.sample(x as f32, y as f32) - self.center;
-            d / sqrt32(d.dot(d))
-        };
+    pub fn tile_frustum(&self, x0: u32, y0: u32, x1: u32, y1: u32) -> Option<Frustum> {
+        // Continuous coordinates: pixel i spans [i, i + 1).
+        let corner = |x: u32, y: u32| self.sample(x as f32, y as f32) - self.center;
         let corners = [
             corner(x0, y0),
             corner(x1, y0),
-            corner(x0, y1),
             corner(x1, y1),
+            corner(x0, y1),
         ];
-        let sum = corners[0] + corners[1] + corners[2] + corners[3];
-        let axis = sum / sqrt32(sum.dot(sum));
-        let cos = corners
-            .iter()
-            .map(|c| c.dot(axis))
-            .fold(f32::INFINITY, f32::min);
-        Cone {
-            apex: self.center,
-            axis,
-            // Non-finite or wider than a half-space: no cone, no beam.
-            cos_half_angle: if cos.is_finite() { cos - 4e-6 } else { 0.0 },
-        }
+        Frustum::through(self.center, corners)
     }
 
     fn ray_to(&self, pixel: Vec3) -> Ray {

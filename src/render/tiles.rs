@@ -1,6 +1,6 @@
 //! Primary rays in tiles: the pixels of a rectangle, a square of
 //! [`TILE`] x [`TILE`] at a time, each square's rays starting at the
-//! distance its cone of rays is known to be clear ([`Scene::clear_distance`]).
+//! distance its frustum of rays is known to be clear ([`Scene::clear_distance`]).
 //!
 //! The clear distance only moves where walks begin, never what they hit, so
 //! any tiling (a crop, a band of rows on one thread, a single pixel) gives
@@ -36,11 +36,11 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
         let ty_end = (ty + TILE).min(y_end);
         for tx in (rect.x..x_end).step_by(TILE as usize) {
             let tx_end = (tx + TILE).min(x_end);
-            let t_start = if kernel.uses_beam() {
-                scene.clear_distance(&camera.tile_cone(tx, ty, tx_end, ty_end))
-            } else {
-                0.0
-            };
+            let frustum = kernel
+                .uses_beam()
+                .then(|| camera.tile_frustum(tx, ty, tx_end, ty_end))
+                .flatten();
+            let t_start = frustum.map_or(0.0, |f| scene.clear_distance(&f));
             for y in ty..ty_end {
                 for x in tx..tx_end {
                     let (rgba, rays) = kernel.pixel(scene, x, y, t_start);

@@ -1,19 +1,21 @@
 //! The beam: one conservative walk of the tree per tile of primary rays.
 //!
-//! Every ray of a tile lies in a cone from the camera (`Cone`). Visiting the
-//! nodes that may meet that cone nearest first, the smallest distance from
+//! Every ray of a tile lies in a frustum from the camera (`Frustum`).
+//! Visiting the nodes that may meet that frustum nearest first, the smallest distance from
 //! the apex to a non-empty box bounds every ray's hit from below: a ray
 //! enters a voxel on its boundary, and the voxel lies in the box. The rays
 //! then start their exact walks there (`Walk::start_from`) and find the same
 //! hit as from the camera, without repeating the descent through the empty
 //! space the whole tile shares (the idea of Laine & Karras 2010, section 5).
 //!
-//! Boxes are tested as their bounding balls and bricks by their 2x2x2
-//! groups, so the answer can be early but never late.
+//! Boxes are tested against the frustum's side planes (with a slack for
+//! rounding) and bricks by their 2x2x2 groups, so the answer can be early
+//! but never late.
 
 use glam::{IVec3, Vec3};
 
-use crate::geom::{distance_to_box, Cone, IAabb};
+use crate::frustum::Frustum;
+use crate::geom::{distance_to_box, IAabb};
 use crate::math::floor_cell;
 use crate::storage::octree::{brick_bit, Node, NodeKind, OctreeScene};
 
@@ -40,14 +42,13 @@ struct Level {
 const MARGIN: f32 = 1.0 - 1e-5;
 
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
-    /// A distance before which no ray inside `cone` hits a voxel (0 when
-    /// the apex is inside or at a non-empty box, `+inf` when the cone meets
+    /// A distance before which no ray inside `frustum` hits a voxel (0 when
+    /// the apex touches a solid voxel, `+inf` when the frustum meets
     /// none). Allocates nothing; visits nodes nearest first and skips every
     /// box no closer than the best found.
-    pub(crate) fn beam_distance(&self, cone: &Cone) -> f32 {
-        // A NaN or non-positive cosine is no cone (wider than a half-space).
-        if self.occupied.is_empty() || cone.cos_half_angle.is_nan() || cone.cos_half_angle <= 0.0 {
-            return 0.0;
+    pub(crate) fn beam_distance(&self, frustum: &Frustum) -> f32 {
+        if self.occupied.is_empty() {
+            return f32::INFINITY;
         }
         // A camera touching a solid voxel (inside it, or on its surface):
         // the answer is 0, which the walk below would also reach, but only
@@ -55,11 +56,11 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         // touch the apex: on an axis where it lies on a plane, the cells on
         // both sides.
         let cell = IVec3::new(
-            floor_cell(cone.apex.x),
-            floor_cell(cone.apex.y),
-            floor_cell(cone.apex.z),
+            floor_cell(frustum.apex.x),
+            floor_cell(frustum.apex.y),
+            floor_cell(frustum.apex.z),
         );
-        let on_plane = cell.as_vec3().cmpeq(cone.apex);
+        let on_plane = cell.as_vec3().cmpeq(frustum.apex);
         let below = IVec3::select(on_plane, IVec3::ONE, IVec3::ZERO);
         for corner in 0..8 {
             let pick = IVec3::new(corner & 1, corner >> 1 & 1, corner >> 2 & 1);
@@ -74,8 +75,10 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let min = self.bounds.min;
         let root_log = self.root_size.trailing_zeros();
         // Children nearest the apex first: mirror the octant order on the
-        // axes the cone's axis runs down.
-        let down = cone.axis.cmplt(Vec3::ZERO);
+        // axes the frustum runs down (its normals sum to a vector inside it).
+        let inward =
+            frustum.normals[0] + frustum.normals[1] + frustum.normals[2] + frustum.normals[3];
+        let down = inward.cmplt(Vec3::ZERO);
         let near_first = u32::from(down.x) | u32::from(down.y) << 1 | u32::from(down.z) << 2;
         let mut best = f32::INFINITY;
         let mut levels = [Level {
@@ -90,11 +93,12 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let mut visit = Some((self.root, IVec3::ZERO, root_log));
         loop {
             if let Some((node, corner, log)) = visit.take() {
-                if let Some(distance) = self.reach(cone, min + corner, 1 << log, best) {
+                if let Some(distance) = self.reach(frustum, min + corner, 1 << log, best) {
                     match node.0 {
                         NodeKind::Solid(_) => best = distance,
                         NodeKind::Brick { occupancy, .. } => {
-                            best = best.min(self.brick_reach(cone, min + corner, occupancy, best));
+                            best =
+                                best.min(self.brick_reach(frustum, min + corner, occupancy, best));
                         }
                         NodeKind::Branch { children, first } if depth < DEPTH => {
                             levels[depth] = Level {
@@ -142,8 +146,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     }
 
     /// The nearest of a brick's occupied 2x2x2 groups that may meet the
-    /// cone and is closer than `best` (else `best`).
-    fn brick_reach(&self, cone: &Cone, corner: IVec3, occupancy: u64, mut best: f32) -> f32 {
+    /// frustum and is closer than `best` (else `best`).
+    fn brick_reach(&self, frustum: &Frustum, corner: IVec3, occupancy: u64, mut best: f32) -> f32 {
         for group in 0..8u32 {
             let local = IVec3::new(
                 (group & 1) as i32 * 2,
@@ -153,28 +157,26 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             if occupancy & GROUP << brick_bit(local) == 0 {
                 continue;
             }
-            if let Some(d) = self.reach(cone, corner + local, 2, best) {
+            if let Some(d) = self.reach(frustum, corner + local, 2, best) {
                 best = d;
             }
         }
         best
     }
 
-    /// The distance from the cone's apex to the cube `[corner, corner +
-    /// side)` clipped to the occupied box, if the cube may meet the cone and
+    /// The distance from the frustum's apex to the cube `[corner, corner +
+    /// side)` clipped to the occupied box, if the cube may meet the frustum and
     /// is closer than `best`.
-    fn reach(&self, cone: &Cone, corner: IVec3, side: i32, best: f32) -> Option<f32> {
+    fn reach(&self, frustum: &Frustum, corner: IVec3, side: i32, best: f32) -> Option<f32> {
         let cube = IAabb::new(corner, corner + side).intersect(&self.occupied);
         if cube.is_empty() {
             return None;
         }
         let (lo, hi) = (cube.min.as_vec3(), cube.max.as_vec3());
-        let distance = distance_to_box(cone.apex, lo, hi);
+        let distance = distance_to_box(frustum.apex, lo, hi);
         if distance >= best {
             return None;
         }
-        let center = (lo + hi) * 0.5;
-        let radius = (hi - lo).length() * 0.5;
-        cone.may_meet_ball(center, radius).then_some(distance)
+        frustum.may_meet_box(lo, hi).then_some(distance)
     }
 }

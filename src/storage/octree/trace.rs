@@ -16,7 +16,8 @@
 
 use glam::IVec3;
 
-use crate::geom::{Cone, IAabb, Ray, MAX_COORD};
+use crate::frustum::Frustum;
+use crate::geom::{IAabb, Ray, MAX_COORD};
 use crate::scene::{Hit, Scene, Traced};
 use crate::storage::octree::lanes::Lanes;
 use crate::storage::octree::{brick_bit, BrickMaterials, Node, NodeKind, OctreeScene};
@@ -55,8 +56,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
         self.walk(ray, self.occupied, 0.0, f32::INFINITY, |_| true)
     }
 
-    fn clear_distance(&self, cone: &Cone) -> f32 {
-        self.beam_distance(cone)
+    fn clear_distance(&self, frustum: &Frustum) -> f32 {
+        self.beam_distance(frustum)
     }
 
     fn trace_from(&self, ray: &Ray, t_start: f32) -> Traced {
