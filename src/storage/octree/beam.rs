@@ -17,7 +17,7 @@ use glam::{IVec3, Vec3};
 use crate::frustum::Frustum;
 use crate::geom::{distance_to_box, IAabb};
 use crate::math::floor_cell;
-use crate::storage::octree::{brick_bit, Node, NodeKind, OctreeScene};
+use crate::storage::octree::{brick_bit, child_rank, Node, NodeKind, OctreeScene};
 
 /// Occupancy bits of the 2x2x2 group at a brick's local origin.
 const GROUP: u64 = 0x0033_0033;
@@ -128,7 +128,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             if level.children & (1 << octant) == 0 {
                 continue;
             }
-            let rank = (u32::from(level.children) & ((1 << octant) - 1)).count_ones();
+            let rank = child_rank(level.children, octant);
             // Always present: the builder's invariant, which the tracer
             // relies on too.
             let Some(&child) = nodes.get((level.first + rank) as usize) else {

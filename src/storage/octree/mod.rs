@@ -31,6 +31,25 @@ pub(crate) fn brick_bit(local: IVec3) -> u32 {
     (local.x | local.y << 2 | local.z << 4) as u32
 }
 
+/// `ONES[m]` is `m.count_ones()`: a child's rank in one load, where the
+/// target has no popcount instruction.
+const ONES: [u8; 256] = {
+    let mut ones = [0; 256];
+    let mut m = 0;
+    while m < 256 {
+        ones[m] = (m as u32).count_ones() as u8;
+        m += 1;
+    }
+    ones
+};
+
+/// Where child `octant` of a branch with child mask `children` is stored,
+/// counted from the branch's first child: the present children before it.
+#[inline]
+pub(crate) fn child_rank(children: u8, octant: u32) -> u32 {
+    u32::from(ONES[usize::from(children) & ((1 << octant) - 1)])
+}
+
 /// Index of a child octant: `x | y << 1 | z << 2`, each bit set for the upper
 /// half of that axis. Children are stored in this order.
 #[inline]
@@ -173,8 +192,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                     if children & (1 << i) == 0 {
                         return 0;
                     }
-                    let rank = (u32::from(children) & ((1 << i) - 1)).count_ones();
-                    node = nodes[(first + rank) as usize];
+                    node = nodes[(first + child_rank(children, i)) as usize];
                 }
                 NodeKind::Solid(material) => return material,
                 NodeKind::Brick {

@@ -20,7 +20,7 @@ use crate::frustum::Frustum;
 use crate::geom::{IAabb, Ray, MAX_COORD};
 use crate::scene::{Hit, Scene, Traced};
 use crate::storage::octree::lanes::Lanes;
-use crate::storage::octree::{brick_bit, BrickMaterials, Node, NodeKind, OctreeScene};
+use crate::storage::octree::{brick_bit, child_rank, BrickMaterials, Node, NodeKind, OctreeScene};
 use crate::storage::walk::{Key, Walk};
 
 /// Entries of the path: the largest root has side `2 * MAX_COORD` = 2^23,
@@ -34,18 +34,6 @@ const PATH: usize = (MAX_DEPTH + 1).next_power_of_two();
 /// Occupancy bits of the 2x2x2 group at the brick's local origin: `x | y << 2
 /// | z << 4` for `x, y, z` in `{0, 1}`.
 const GROUP: u64 = 0x0033_0033;
-
-/// `ONES[m]` is `m.count_ones()`: a branch's child rank in one load, where
-/// the target has no popcount instruction.
-const ONES: [u8; 256] = {
-    let mut ones = [0; 256];
-    let mut m = 0;
-    while m < 256 {
-        ones[m] = (m as u32).count_ones() as u8;
-        m += 1;
-    }
-    ones
-};
 
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
     fn bounds(&self) -> IAabb {
@@ -61,6 +49,17 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
     }
 
     fn trace_from(&self, ray: &Ray, t_start: f32) -> Traced {
+        // A clear distance of 0 mostly means the camera touches a solid
+        // voxel, and then most rays hit the cell they start in: one lookup
+        // answers them as the walk would, without building it.
+        if t_start == 0.0 {
+            let (cell, face) = Walk::start_cell(ray);
+            let material = self.material(cell);
+            if material != 0 {
+                let hit = Hit::from_palette(&self.palette, cell, face, 0.0, material);
+                return Traced { hit, steps: 0 };
+            }
+        }
         self.walk(ray, self.occupied, t_start, f32::INFINITY, |_| true)
     }
 
@@ -146,7 +145,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                         if children & (1 << octant) == 0 {
                             break half_log;
                         }
-                        let rank = u32::from(ONES[usize::from(children) & ((1 << octant) - 1)]);
+                        let rank = child_rank(children, octant);
                         depth += 1;
                         let index = first + rank;
                         path[depth % PATH] = index;

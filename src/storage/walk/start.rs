@@ -6,7 +6,7 @@
 
 use glam::IVec3;
 
-use crate::geom::{IAabb, Ray};
+use crate::geom::{Face, IAabb, Ray};
 use crate::math::floor_cell;
 use crate::storage::walk::{Key, Walk};
 
@@ -42,34 +42,26 @@ impl Walk {
         Walk::begin(ray, bounds, not_before)
     }
 
+    /// The cell a ray starts in, by the start rule, and the face a hit in
+    /// it reports (its distance is 0): what a walk from the start reports
+    /// when its first cell is solid, without the walk.
+    pub(crate) fn start_cell(ray: &Ray) -> (IVec3, Option<Face>) {
+        let (step, start, start_keys) = start_rule(ray);
+        let mut key = Key::BEFORE;
+        for k in start_keys {
+            if key.lt(k) {
+                key = k;
+            }
+        }
+        let axis = usize::from(key.axis);
+        let face = (key.t != f32::NEG_INFINITY).then(|| Face::entered(axis, step[axis] > 0));
+        (IVec3::from_array(start), face)
+    }
+
     /// The walk in its first cell inside `bounds` at or after `not_before`.
     fn begin(ray: &Ray, bounds: &IAabb, not_before: Key) -> Option<Walk> {
         let (origin, dir, inv_dir) = (ray.origin(), ray.dir(), ray.inv_dir());
-        let mut step = [0; 3];
-        let mut start = [0; 3];
-        let mut start_keys = [Key::BEFORE; 3];
-        for axis in 0..3 {
-            let (o, d) = (origin[axis], dir[axis]);
-            // An infinite reciprocal (a subnormal component) would turn a
-            // crossing at distance 0 into NaN; such an axis never reaches a
-            // plane in f32 anyway, so it counts as not moving.
-            let moving = d != 0.0 && inv_dir[axis].is_finite();
-            let s = i32::from(moving && d > 0.0) - i32::from(moving && d < 0.0);
-            // The start cell's entry plane is floor(o) moving up, ceil(o)
-            // moving down: the origin lies on it exactly when it is an
-            // integer, and then a ray moving down starts in the cell below.
-            // (Saturated cells of huge origins lie outside every volume.)
-            let floor = floor_cell(o);
-            let on_plane = moving && floor as f32 == o;
-            start[axis] = floor.saturating_sub(i32::from(on_plane && s < 0));
-            if on_plane {
-                start_keys[axis] = Key {
-                    t: 0.0,
-                    axis: axis as u8,
-                };
-            }
-            step[axis] = s;
-        }
+        let (step, start, start_keys) = start_rule(ray);
         let step = IVec3::from_array(step);
         let start = IVec3::from_array(start);
         // Built where it is returned (no copy of the walk on the way out).
@@ -254,4 +246,39 @@ impl Walk {
         }
         (c, exit.t)
     }
+}
+
+/// The start rule: for each axis, the step (+1, -1, or 0 for an axis the ray
+/// does not move along), the coordinate of the cell the ray is in just after
+/// `t = 0`, and the key of the crossing into it (`(0, axis)` when the
+/// origin lies on its entry plane, else before everything).
+#[inline]
+fn start_rule(ray: &Ray) -> ([i32; 3], [i32; 3], [Key; 3]) {
+    let (origin, dir, inv_dir) = (ray.origin(), ray.dir(), ray.inv_dir());
+    let mut step = [0; 3];
+    let mut start = [0; 3];
+    let mut start_keys = [Key::BEFORE; 3];
+    for axis in 0..3 {
+        let (o, d) = (origin[axis], dir[axis]);
+        // An infinite reciprocal (a subnormal component) would turn a
+        // crossing at distance 0 into NaN; such an axis never reaches a
+        // plane in f32 anyway, so it counts as not moving.
+        let moving = d != 0.0 && inv_dir[axis].is_finite();
+        let s = i32::from(moving && d > 0.0) - i32::from(moving && d < 0.0);
+        // The start cell's entry plane is floor(o) moving up, ceil(o)
+        // moving down: the origin lies on it exactly when it is an
+        // integer, and then a ray moving down starts in the cell below.
+        // (Saturated cells of huge origins lie outside every volume.)
+        let floor = floor_cell(o);
+        let on_plane = moving && floor as f32 == o;
+        start[axis] = floor.saturating_sub(i32::from(on_plane && s < 0));
+        if on_plane {
+            start_keys[axis] = Key {
+                t: 0.0,
+                axis: axis as u8,
+            };
+        }
+        step[axis] = s;
+    }
+    (step, start, start_keys)
 }
