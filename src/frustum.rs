@@ -17,20 +17,29 @@ pub struct Frustum {
     /// Inward normals of the four side planes through the apex: a direction
     /// `d` is inside when `n . d >= 0` for all four.
     pub normals: [Vec3; 4],
+    /// How far (radians, small-angle) the planes are widened: a direction
+    /// up to this much outside a plane still counts as inside.
+    pub slack: f32,
 }
 
-/// The slack of the side-plane tests, relative to the distance from the
-/// apex: rays are rounded to about 1e-7 of their length, normals about as
-/// much, and the slack is a hundred times both.
+/// The least slack of the side-plane tests, relative to the distance from
+/// the apex: normals and box corners are rounded to about 1e-7 of their
+/// length, and this is a hundred times that.
 const SLACK: f32 = 2e-5;
 
 impl Frustum {
     /// The frustum of the rays from `apex` through the quadrilateral whose
-    /// corners lie along `corners` (directions, in order around it), or
-    /// `None` when the corners do not span one (parallel or non-finite
-    /// directions, or a quadrilateral wider than a half-space).
+    /// corners lie along `corners` (directions, in order around it),
+    /// widened by `stray` radians for rays that may stray that far from
+    /// the exact ones; `None` when the corners do not span one (parallel or
+    /// non-finite directions, a quadrilateral wider than a half-space), or
+    /// for a negative or non-finite `stray`.
     #[must_use]
-    pub fn through(apex: Vec3, corners: [Vec3; 4]) -> Option<Frustum> {
+    pub fn through(apex: Vec3, corners: [Vec3; 4], stray: f32) -> Option<Frustum> {
+        if !(stray.is_finite() && stray >= 0.0) {
+            return None;
+        }
+        let slack = SLACK + stray;
         let center = corners[0] + corners[1] + corners[2] + corners[3];
         let mut normals = [Vec3::ZERO; 4];
         for (i, normal) in normals.iter_mut().enumerate() {
@@ -48,9 +57,13 @@ impl Frustum {
         let convex = (0..4).all(|i| {
             [corners[(i + 2) % 4], corners[(i + 3) % 4]]
                 .iter()
-                .all(|c| normals[i].dot(*c) >= -SLACK * c.abs().element_sum())
+                .all(|c| normals[i].dot(*c) >= -slack * c.abs().element_sum())
         });
-        convex.then_some(Frustum { apex, normals })
+        convex.then_some(Frustum {
+            apex,
+            normals,
+            slack,
+        })
     }
 
     /// Whether the box `[min, max]` may meet the frustum: `false` only when
@@ -61,7 +74,7 @@ impl Frustum {
         self.normals.iter().all(|n| {
             // The box corner farthest along the normal.
             let corner = Vec3::select(n.cmpge(Vec3::ZERO), max, min) - self.apex;
-            n.dot(corner) >= -SLACK * corner.abs().element_sum()
+            n.dot(corner) >= -self.slack * corner.abs().element_sum()
         })
     }
 }

@@ -173,11 +173,14 @@ impl Ray {
     }
 }
 
-/// Euclidean distance from `point` to the box `[min, max]` (0 inside it).
+/// Euclidean distance from `point` to the box `[min, max]` (0 inside it),
+/// past `f32::MAX` given as `f32::MAX`.
 #[must_use]
 pub(crate) fn distance_to_box(point: Vec3, min: Vec3, max: Vec3) -> f32 {
     let outside = (min - point).max(point - max).max(Vec3::ZERO);
-    sqrt32(outside.dot(outside))
+    // Past about 1.8e19 the squared length overflows; the largest finite
+    // value is then still below the distance, which is all callers need.
+    sqrt32(outside.dot(outside)).min(f32::MAX)
 }
 
 /// One of the six faces of a voxel, named by its outward normal.

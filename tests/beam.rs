@@ -121,6 +121,57 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// Far from the origin with a narrow view or a short focus distance,
+    /// rays are rounded far more than near it (their image-plane points are
+    /// summed in world coordinates): the frustum must still hold them.
+    #[test]
+    fn clear_distance_is_conservative_for_far_cameras(
+        seed in any::<u64>(),
+        percent in 5u64..35,
+        dir in vec3(-1.0..1.0),
+        far in prop::sample::select(vec![500.0f32, 1000.0, 2000.0, 4000.0]),
+        zoom in 0.5f32..1.5,
+        focus_dist in prop::sample::select(vec![1.0f32, 0.05, 20.0]),
+    ) {
+        let Some(dir) = dir.try_normalize() else { return Ok(()) };
+        let lookfrom = dir * far;
+        // A view a little wider or narrower than the 32-voxel scene.
+        let fov = (32.0 / far).atan().to_degrees() * 2.0 * zoom;
+        // Small pixels (the rounding matters against them); the tiles
+        // checked are the middle ones, where the scene is.
+        let Ok(camera) = Camera::new(CameraSettings {
+            width: 960,
+            height: 540,
+            lookfrom,
+            vertical_fov: fov,
+            focus_dist,
+            ..CameraSettings::default()
+        }) else { return Ok(()) };
+        let scene = OctreeScene::build(&speckle(seed, percent), IAabb::centered(16)).unwrap();
+        for ty in (224..320).step_by(16) {
+            for tx in (400..560).step_by(16) {
+                let t0 = camera
+                    .tile_frustum(tx, ty, tx + 16, ty + 16)
+                    .map_or(0.0, |f| scene.clear_distance(&f));
+                for y in ty..ty + 16 {
+                    for x in tx..tx + 16 {
+                        let ray = camera.get_ray(x, y);
+                        let expected = scene.trace_counted(&ray);
+                        prop_assert_eq!(
+                            scene.trace_from(&ray, t0).hit,
+                            expected.hit,
+                            "pixel ({}, {}), clear distance {}", x, y, t0
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn a_clear_frustum_skips_the_empty_space_before_the_surface() {
     // Not only conservative but useful: looking down at a floor from 20
@@ -140,4 +191,30 @@ fn a_clear_frustum_skips_the_empty_space_before_the_surface() {
     .unwrap();
     let t0 = scene.clear_distance(&camera.tile_frustum(6, 6, 10, 10).unwrap());
     assert!((15.0..=20.0).contains(&t0), "clear distance {t0}");
+}
+
+#[test]
+fn extreme_cameras_and_spans_render_without_panics() {
+    let scene = OctreeScene::build(&speckle(3, 30), IAabb::centered(8)).unwrap();
+    let options = voxtrace::RenderOptions::default();
+    // A camera on i32::MIN planes: the cells touching it saturate.
+    let far = Camera::new(CameraSettings {
+        width: 8,
+        height: 8,
+        lookfrom: Vec3::splat(-2_147_483_648.0),
+        focus_dist: 1e9,
+        ..CameraSettings::default()
+    })
+    .unwrap();
+    let mut out = vec![0; 64];
+    voxtrace::render(&scene, &far, &options, &mut out).unwrap();
+    // A span ending at the last pixel of the widest frame: tiles must not
+    // overflow, and the span's pixels are the single-pixel renders.
+    let wide = camera(u32::MAX, 2, Vec3::new(20.0, 12.0, 9.0), Vec3::ZERO, 60.0).unwrap();
+    let mut span = [0u32; 3];
+    voxtrace::render_span(&scene, &wide, &options, u32::MAX - 3, 1, &mut span);
+    for (i, &pixel) in span.iter().enumerate() {
+        let x = u32::MAX - 3 + i as u32;
+        assert_eq!(pixel, voxtrace::render_pixel(&scene, &wide, &options, x, 1).0);
+    }
 }

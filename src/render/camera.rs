@@ -25,7 +25,8 @@ pub struct CameraSettings {
     /// The scene's "up" direction; must not be parallel to the view.
     pub cam_up: Vec3,
     /// Distance from the camera to the image plane. With a pinhole it only
-    /// scales the viewport, so images do not depend on it.
+    /// scales the viewport, so images depend on it only through rounding
+    /// (which grows as it shrinks: see `Camera::tile_frustum`).
     pub focus_dist: f32,
 }
 
@@ -90,6 +91,9 @@ pub struct Camera {
     delta_v: Vec3,
     forward: Ray,
     spread: f32,
+    /// How far (in radians) a computed ray may stray from the exact ray
+    /// through its image-plane point: see `ray_error`.
+    ray_error: f32,
 }
 
 fn invalid(reason: &'static str) -> Error {
@@ -151,6 +155,7 @@ impl Camera {
             forward,
             // The angle one pixel row spans at the view's center.
             spread: delta_v.length() / s.focus_dist,
+            ray_error: ray_error(pixel00, viewport_u, viewport_v, s.focus_dist),
         };
         // The ray direction is affine in (i, j): if the four corners are
         // valid, so is every pixel between them.
@@ -208,10 +213,12 @@ impl Camera {
     }
 
     /// The frustum from the camera through the pixels `x0..x1` by
-    /// `y0..y1`, holding every ray through any point of their area (so
-    /// anti-aliasing samples too): the rays through the area are positive
-    /// combinations of the directions to its four corners. `None` for an
-    /// empty or degenerate rectangle.
+    /// `y0..y1`, holding every ray `get_ray` and `get_ray_at` compute
+    /// through any point of their area (so anti-aliasing samples too): the
+    /// exact rays through the area are positive combinations of the
+    /// directions to its four corners, and the frustum is widened by the
+    /// bound on how far rounding moves a computed ray from its exact one.
+    /// `None` for an empty or degenerate rectangle.
     #[must_use]
     pub fn tile_frustum(&self, x0: u32, y0: u32, x1: u32, y1: u32) -> Option<Frustum> {
         // Continuous coordinates: pixel i spans [i, i + 1).
@@ -222,7 +229,9 @@ impl Camera {
             corner(x1, y1),
             corner(x0, y1),
         ];
-        Frustum::through(self.center, corners)
+        // The corners are computed as the rays are: both may stray by the
+        // camera's rounding bound, so the frustum widens by twice it.
+        Frustum::through(self.center, corners, 2.0 * self.ray_error)
     }
 
     fn ray_to(&self, pixel: Vec3) -> Ray {
@@ -230,6 +239,23 @@ impl Camera {
         // of never failing without a panic path.
         Ray::new(self.center, pixel - self.center).unwrap_or(self.forward)
     }
+}
+
+/// A bound on the angle between a computed ray and the exact ray through
+/// the same continuous pixel coordinates. Image-plane points are summed in
+/// world coordinates (`pixel00 + delta_u * x + delta_v * y`), so each
+/// component is off by a few roundings of the largest term (at most `m`),
+/// and the camera position is subtracted only afterwards: the direction,
+/// at least `focus_dist` long, is off by at most about
+/// `5 * sqrt(3) * m * 2^-24 / focus_dist` radians; 20 instead of
+/// `5 * sqrt(3)` leaves room for the normalization and a margin. Far from
+/// the origin with a short focus distance this is no longer small against
+/// a pixel.
+fn ray_error(pixel00: Vec3, viewport_u: Vec3, viewport_v: Vec3, focus_dist: f32) -> f32 {
+    let m = pixel00.abs().max_element()
+        + 2.0 * viewport_u.abs().max_element()
+        + 2.0 * viewport_v.abs().max_element();
+    20.0 * m * (f32::EPSILON * 0.5) / focus_dist
 }
 
 /// `v / |v|` for a finite, non-zero `v`. Divides by the largest component

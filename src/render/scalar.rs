@@ -83,9 +83,8 @@ impl<S: Scene + ?Sized> FrameJob for Tiles<'_, S> {
             out,
         } = self;
         let stride = rect.width as usize;
-        render_tiles(kernel, scene, camera, rect, |x, y, rgba| {
-            let i = (y - rect.y) as usize * stride + (x - rect.x) as usize;
-            if let Some(pixel) = out.get_mut(i) {
+        render_tiles(kernel, scene, camera, rect, |dx, dy, rgba| {
+            if let Some(pixel) = out.get_mut(dy as usize * stride + dx as usize) {
                 *pixel = rgba;
             }
         })

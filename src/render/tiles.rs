@@ -20,8 +20,8 @@ use crate::scene::Scene;
 pub(crate) const TILE: u32 = 16;
 
 /// Renders every pixel of `rect` with `kernel`, tile by tile (row-major
-/// tiles, row-major pixels inside a tile), handing `put(x, y, rgba)` each
-/// pixel in frame coordinates. Allocates nothing.
+/// tiles, row-major pixels inside a tile), handing `put(dx, dy, rgba)` each
+/// pixel at its offset inside `rect`. Allocates nothing.
 pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
     kernel: &K,
     scene: &S,
@@ -30,21 +30,23 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
     mut put: impl FnMut(u32, u32, u32),
 ) -> RayStats {
     let mut stats = RayStats::default();
-    let x_end = rect.x.saturating_add(rect.width);
-    let y_end = rect.y.saturating_add(rect.height);
-    for ty in (rect.y..y_end).step_by(TILE as usize) {
-        let ty_end = (ty + TILE).min(y_end);
-        for tx in (rect.x..x_end).step_by(TILE as usize) {
-            let tx_end = (tx + TILE).min(x_end);
-            let frustum = kernel
-                .uses_beam()
-                .then(|| camera.tile_frustum(tx, ty, tx_end, ty_end))
-                .flatten();
+    // Offsets inside the rectangle, so that no sum passes u32::MAX for a
+    // rectangle that reaches the last pixel of the largest frame.
+    for dy0 in (0..rect.height).step_by(TILE as usize) {
+        let dy1 = dy0 + TILE.min(rect.height - dy0);
+        for dx0 in (0..rect.width).step_by(TILE as usize) {
+            let dx1 = dx0 + TILE.min(rect.width - dx0);
+            let (x0, y0) = (rect.x.wrapping_add(dx0), rect.y.wrapping_add(dy0));
+            let (x1, y1) = (rect.x.wrapping_add(dx1), rect.y.wrapping_add(dy1));
+            // (A tile past u32::MAX, outside every frame, wraps: no beam.)
+            let beam = kernel.uses_beam() && x1 > x0 && y1 > y0;
+            let frustum = beam.then(|| camera.tile_frustum(x0, y0, x1, y1)).flatten();
             let t_start = frustum.map_or(0.0, |f| scene.clear_distance(&f));
-            for y in ty..ty_end {
-                for x in tx..tx_end {
+            for dy in dy0..dy1 {
+                for dx in dx0..dx1 {
+                    let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
                     let (rgba, rays) = kernel.pixel(scene, x, y, t_start);
-                    put(x, y, rgba);
+                    put(dx, dy, rgba);
                     stats += rays;
                 }
             }

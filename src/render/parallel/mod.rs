@@ -116,8 +116,8 @@ where
                     height: TILE.min(region.y + region.height - y),
                     ..region
                 };
-                let stats = render_tiles(kernel, scene, camera, rect, |x, y, rgba| {
-                    frame.set(x - region.x, y - region.y, rgba);
+                let stats = render_tiles(kernel, scene, camera, rect, |dx, dy, rgba| {
+                    frame.set(dx, band * TILE + dy, rgba);
                 });
                 rows_done(rect.height);
                 stats

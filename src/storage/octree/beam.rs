@@ -67,7 +67,13 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             if (pick & !below) != IVec3::ZERO {
                 continue;
             }
-            if self.material(cell - pick) != 0 {
+            // (Saturating: a saturated coordinate lies outside every volume.)
+            let touching = IVec3::new(
+                cell.x.saturating_sub(pick.x),
+                cell.y.saturating_sub(pick.y),
+                cell.z.saturating_sub(pick.z),
+            );
+            if self.material(touching) != 0 {
                 return 0.0;
             }
         }
