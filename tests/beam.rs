@@ -215,6 +215,9 @@ fn extreme_cameras_and_spans_render_without_panics() {
     voxtrace::render_span(&scene, &wide, &options, u32::MAX - 3, 1, &mut span);
     for (i, &pixel) in span.iter().enumerate() {
         let x = u32::MAX - 3 + i as u32;
-        assert_eq!(pixel, voxtrace::render_pixel(&scene, &wide, &options, x, 1).0);
+        assert_eq!(
+            pixel,
+            voxtrace::render_pixel(&scene, &wide, &options, x, 1).0
+        );
     }
 }

@@ -121,7 +121,7 @@ pub fn measure(
     for &size in sizes {
         let bounds = IAabb::centered(size);
         let dense = DenseScene::build(&terrain, bounds).map_err(|e| e.to_string())?;
-        let naive = NaiveGrid::fill(&terrain, bounds)?;
+        let naive = NaiveGrid::fill_occupied(&terrain, bounds)?;
         let rays = primary_rays(&paper_camera(size, width, height)?);
         let mut exact_hits = vec![None; rays.len()];
         let mut naive_hits = vec![None; rays.len()];
@@ -181,7 +181,8 @@ pub fn section(
          walk (plane crossings recomputed from the origin, ties to the lowest axis) and by \
          the textbook Amanatides & Woo loop the seed paper uses (`tMax += tDelta` per step, \
          strict `<` between axes, slab-test entry; without the paper's wrap-around), over a \
-         byte grid of the same terrain. The textbook walk lives in the report \
+         byte grid of the same terrain cut to the box around its solid voxels, the one box \
+         the exact walk clips itself to. The textbook walk lives in the report \
          (`frontends/report/src/naive_dda.rs`) only; it is no backend. Median of {runs} runs \
          after a warm-up, the two alternating; ratio = exact / naive (above 1: the naive \
          walk is faster). A pixel differs when its hit voxel differs, a hit against a miss \

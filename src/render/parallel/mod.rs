@@ -1,6 +1,7 @@
-//! The threaded renderer (feature `rayon`): the scalar tracer's pixel
-//! kernel over the framebuffer's parallel pixel iterator, one row per unit
-//! of work.
+//! The threaded renderer (feature `rayon`): the scalar tracer's tiles,
+//! one band of 16 rows per unit of work, written into the atomic
+//! framebuffer; and the framebuffer's own parallel pixel iterator
+//! (`pixels.rs`) for users' per-pixel work.
 
 pub(crate) mod pixels;
 
