@@ -23,6 +23,11 @@ use crate::storage::octree::lanes::Lanes;
 use crate::storage::octree::{brick_bit, child_rank, BrickMaterials, Node, NodeKind, OctreeScene};
 use crate::storage::walk::{Key, Walk};
 
+/// The visitor of every trace but the debug view's: never stops the walk.
+fn keep_walking(_: IAabb) -> bool {
+    true
+}
+
 /// Entries of the path: the largest root has side `2 * MAX_COORD` = 2^23,
 /// and halving it down to side-4 bricks takes depths 0 to 21.
 const MAX_DEPTH: usize = (2 * MAX_COORD as u32).trailing_zeros() as usize - 1;
@@ -41,7 +46,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
     }
 
     fn trace_counted(&self, ray: &Ray) -> Traced {
-        self.walk(ray, self.occupied, 0.0, f32::INFINITY, |_| true)
+        self.walk(ray, self.occupied, 0.0, f32::INFINITY, keep_walking)
     }
 
     fn clear_distance(&self, frustum: &Frustum) -> f32 {
@@ -60,7 +65,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
                 return Traced { hit, steps: 0 };
             }
         }
-        self.walk(ray, self.occupied, t_start, f32::INFINITY, |_| true)
+        self.walk(ray, self.occupied, t_start, f32::INFINITY, keep_walking)
     }
 
     /// Walks the whole volume (not only the occupied box), so the debug
@@ -70,7 +75,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
     }
 
     fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        let hit = self.walk(ray, self.occupied, 0.0, t_max, |_| true).hit;
+        let hit = self.walk(ray, self.occupied, 0.0, t_max, keep_walking).hit;
         hit.filter(|h| h.t <= t_max)
     }
 
@@ -87,12 +92,13 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// whole volume) from where the ray is at `t_start` (0: its start),
     /// showing `visit` each empty cube it leaves and giving up once it
     /// enters a cube farther than `t_max`; monomorphized so that tracing
-    /// without a visitor pays nothing for it.
+    /// without a visitor pays nothing for it. Not inlined: every trace
+    /// without a visitor shares one copy (a quarter of the firmware's
+    /// code otherwise), for the cost of one call per ray.
     ///
     /// Starting at the region instead of the volume changes nothing but
     /// speed: outside the occupied box every cell is empty, and the walk
     /// enters the region at the crossing single steps would enter it by.
-    #[inline]
     fn walk<V: FnMut(IAabb) -> bool>(
         &self,
         ray: &Ray,
