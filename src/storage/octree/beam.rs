@@ -1,9 +1,10 @@
 //! The beam: one conservative walk of the tree per tile of primary rays.
 //!
 //! Every ray of a tile lies in a frustum from the camera (`Frustum`).
-//! Visiting the nodes that may meet that frustum nearest first, the smallest distance from
-//! the apex to a non-empty box bounds every ray's hit from below: a ray
-//! enters a voxel on its boundary, and the voxel lies in the box. The rays
+//! Visiting the nodes that may meet that frustum nearest first, the
+//! smallest distance from the apex to a non-empty box bounds every ray's
+//! hit from below: a ray enters a voxel on its boundary, and the voxel lies
+//! in the box. The rays
 //! then start their exact walks there (`Walk::start_from`) and find the same
 //! hit as from the camera, without repeating the descent through the empty
 //! space the whole tile shares (the idea of Laine & Karras 2010, section 5).
