@@ -14,7 +14,7 @@
 use glam::{BVec3A, IVec3, Vec3A};
 
 use crate::geom::{IAabb, Ray};
-use crate::storage::walk::{Key, Walk};
+use crate::storage::walk::{start_rule, Key, Walk};
 
 /// Origins within this distance of 0 on every axis take the shortcuts:
 /// casts of their coordinates truncate exactly.
@@ -110,43 +110,22 @@ impl Entry {
             return None;
         }
         // Plain arrays: indexing them by axis costs no panic branch.
-        let (o, d) = (ray.origin().to_array(), ray.dir().to_array());
+        let o = ray.origin().to_array();
         let inv = ray.inv_dir().to_array();
+        let d = ray.dir().to_array();
         let (lo, hi) = (region.min.to_array(), region.max.to_array());
-        let mut step = [0; 3];
-        let mut start = [0; 3];
-        let mut start_keys = [BEFORE; 3];
+        // The start rule, shared with `Walk::start`.
+        let (step, start, start_keys) = start_rule(ray);
         let mut inside = [false; 3];
         let crossing = |axis: usize, plane: i32| Key {
             t: (plane as f32 - o[axis]) * inv[axis],
             axis: axis as u8,
         };
-        // The start cell and the key entering the region on each axis;
-        // the latest of them enters the region.
+        // The key entering the region on each axis; the latest of them
+        // enters the region.
         let mut key_in = BEFORE;
         let mut entry_axis = None;
         for a in 0..3 {
-            let truncated = o[a] as i32;
-            let tf = truncated as f32;
-            let moving = d[a] != 0.0 && inv[a].is_finite();
-            step[a] = if !moving {
-                0
-            } else if d[a] > 0.0 {
-                1
-            } else {
-                -1
-            };
-            start[a] = if step[a] < 0 {
-                truncated + i32::from(tf < o[a]) - 1
-            } else {
-                truncated - i32::from(tf > o[a])
-            };
-            if moving && tf == o[a] {
-                start_keys[a] = Key {
-                    t: 0.0,
-                    axis: a as u8,
-                };
-            }
             inside[a] = (lo[a]..hi[a]).contains(&start[a]);
             let key = if inside[a] {
                 start_keys[a]

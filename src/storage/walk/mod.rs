@@ -40,6 +40,8 @@ use crate::geom::{Face, IAabb};
 
 mod start;
 
+pub(crate) use start::start_rule;
+
 /// A crossing's place in the ray's visiting order: by time, then by axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Key {

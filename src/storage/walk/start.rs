@@ -253,7 +253,7 @@ impl Walk {
 /// `t = 0`, and the key of the crossing into it (`(0, axis)` when the
 /// origin lies on its entry plane, else before everything).
 #[inline]
-fn start_rule(ray: &Ray) -> ([i32; 3], [i32; 3], [Key; 3]) {
+pub(crate) fn start_rule(ray: &Ray) -> ([i32; 3], [i32; 3], [Key; 3]) {
     let (origin, dir, inv_dir) = (ray.origin(), ray.dir(), ray.inv_dir());
     let mut step = [0; 3];
     let mut start = [0; 3];
