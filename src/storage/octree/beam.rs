@@ -18,7 +18,7 @@ use glam::{IVec3, Vec3};
 use crate::frustum::Frustum;
 use crate::geom::{distance_to_box, IAabb};
 use crate::math::floor_cell;
-use crate::storage::octree::{brick_bit, child_rank, Node, NodeKind, OctreeScene};
+use crate::storage::octree::{brick_bit, child_offset, child_rank, Node, NodeKind, OctreeScene};
 
 /// Occupancy bits of the 2x2x2 group at a brick's local origin.
 const GROUP: u64 = 0x0033_0033;
@@ -64,7 +64,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let on_plane = cell.as_vec3().cmpeq(frustum.apex);
         let below = IVec3::select(on_plane, IVec3::ONE, IVec3::ZERO);
         for corner in 0..8 {
-            let pick = IVec3::new(corner & 1, corner >> 1 & 1, corner >> 2 & 1);
+            let pick = child_offset(corner);
             if (pick & !below) != IVec3::ZERO {
                 continue;
             }
@@ -142,11 +142,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                 continue;
             };
             let child_log = root_log - depth as u32;
-            let offset = IVec3::new(
-                (octant & 1) as i32,
-                (octant >> 1 & 1) as i32,
-                (octant >> 2) as i32,
-            ) << child_log;
+            let offset = child_offset(octant as usize) << child_log;
             visit = Some((child, level.corner + offset, child_log));
         }
         best * MARGIN
@@ -155,12 +151,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// The nearest of a brick's occupied 2x2x2 groups that may meet the
     /// frustum and is closer than `best` (else `best`).
     fn brick_reach(&self, frustum: &Frustum, corner: IVec3, occupancy: u64, mut best: f32) -> f32 {
-        for group in 0..8u32 {
-            let local = IVec3::new(
-                (group & 1) as i32 * 2,
-                (group >> 1 & 1) as i32 * 2,
-                (group >> 2) as i32 * 2,
-            );
+        for group in 0..8 {
+            let local = child_offset(group) * 2;
             if occupancy & GROUP << brick_bit(local) == 0 {
                 continue;
             }

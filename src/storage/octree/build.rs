@@ -11,7 +11,8 @@ use glam::IVec3;
 use crate::error::Error;
 use crate::geom::IAabb;
 use crate::storage::octree::{
-    brick_bit, occupied_box, BrickMaterials, Node, NodeKind, OctreeLen, OctreeScene, BRICK,
+    brick_bit, child_offset, occupied_box, BrickMaterials, Node, NodeKind, OctreeLen, OctreeScene,
+    BRICK,
 };
 use crate::voxel::{Region, VoxelSource};
 
@@ -276,11 +277,6 @@ impl<'s, S: VoxelSource + ?Sized, K: Sink> Builder<'s, S, K> {
             first,
         })))
     }
-}
-
-/// Offset of child octant `i` (`x | y << 1 | z << 2`) in units of half a side.
-pub(crate) fn child_offset(i: usize) -> IVec3 {
-    IVec3::new((i & 1) as i32, ((i >> 1) & 1) as i32, ((i >> 2) & 1) as i32)
 }
 
 /// Builds the eight children of the cube `[corner, corner + size)` in octant

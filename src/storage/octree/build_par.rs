@@ -9,9 +9,9 @@ use crate::error::Error;
 use crate::fallible::try_grow;
 use crate::geom::IAabb;
 use crate::storage::octree::build::{
-    child_offset, octants, push_vec, root_size, shortcut, Builder, Cube, VecSink,
+    octants, push_vec, root_size, shortcut, Builder, Cube, VecSink,
 };
-use crate::storage::octree::{BrickMaterials, Node, NodeKind, OctreeScene};
+use crate::storage::octree::{child_offset, BrickMaterials, Node, NodeKind, OctreeScene};
 use crate::voxel::VoxelSource;
 
 /// Side of the cubes handed to one task. 64^3 voxels are a few milliseconds

@@ -50,6 +50,14 @@ pub(crate) fn child_rank(children: u8, octant: u32) -> u32 {
     u32::from(ONES[usize::from(children) & ((1 << octant) - 1)])
 }
 
+/// Offset of child octant `i` (`x | y << 1 | z << 2`) in units of half a
+/// side: the inverse of [`octant`], for the builders, the beam and anyone
+/// else who turns an octant back into a corner.
+#[inline]
+pub(crate) fn child_offset(i: usize) -> IVec3 {
+    IVec3::new((i & 1) as i32, ((i >> 1) & 1) as i32, ((i >> 2) & 1) as i32)
+}
+
 /// Index of a child octant: `x | y << 1 | z << 2`, each bit set for the upper
 /// half of that axis. Children are stored in this order.
 #[inline]
