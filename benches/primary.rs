@@ -34,34 +34,37 @@ fn from_camera(scene: &impl Scene, camera: &Camera) -> f32 {
     sum
 }
 
-/// The tiles' clear distances alone.
-fn beams(scene: &impl Scene, camera: &Camera) -> f32 {
+/// The frame's tiles, row-major, as `(x0, y0, x1, y1)`, each with the
+/// clear distance of its frustum.
+fn tiles<'a>(
+    scene: &'a impl Scene,
+    camera: &'a Camera,
+) -> impl Iterator<Item = ((u32, u32, u32, u32), f32)> + 'a {
     let (w, h) = (camera.width(), camera.height());
-    let mut sum = 0.0;
-    for ty in (0..h).step_by(TILE as usize) {
-        for tx in (0..w).step_by(TILE as usize) {
-            let frustum = camera.tile_frustum(tx, ty, (tx + TILE).min(w), (ty + TILE).min(h));
-            sum += frustum.map_or(0.0, |f| scene.clear_distance(&f)).min(1e9);
-        }
-    }
-    sum
-}
-
-/// Every pixel's primary ray walked from its tile's clear distance.
-fn tiled(scene: &impl Scene, camera: &Camera) -> f32 {
-    let (w, h) = (camera.width(), camera.height());
-    let mut sum = 0.0;
-    for ty in (0..h).step_by(TILE as usize) {
-        for tx in (0..w).step_by(TILE as usize) {
+    (0..h).step_by(TILE as usize).flat_map(move |ty| {
+        (0..w).step_by(TILE as usize).map(move |tx| {
             let (x1, y1) = ((tx + TILE).min(w), (ty + TILE).min(h));
             let t0 = camera
                 .tile_frustum(tx, ty, x1, y1)
                 .map_or(0.0, |f| scene.clear_distance(&f));
-            for y in ty..y1 {
-                for x in tx..x1 {
-                    let traced = scene.trace_from(&camera.get_ray(x, y), t0);
-                    sum += traced.hit.map_or(0.0, |h| h.t);
-                }
+            ((tx, ty, x1, y1), t0)
+        })
+    })
+}
+
+/// The tiles' clear distances alone.
+fn beams(scene: &impl Scene, camera: &Camera) -> f32 {
+    tiles(scene, camera).map(|(_, t0)| t0.min(1e9)).sum()
+}
+
+/// Every pixel's primary ray walked from its tile's clear distance.
+fn tiled(scene: &impl Scene, camera: &Camera) -> f32 {
+    let mut sum = 0.0;
+    for ((x0, y0, x1, y1), t0) in tiles(scene, camera) {
+        for y in y0..y1 {
+            for x in x0..x1 {
+                let traced = scene.trace_from(&camera.get_ray(x, y), t0);
+                sum += traced.hit.map_or(0.0, |h| h.t);
             }
         }
     }
