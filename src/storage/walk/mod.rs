@@ -38,6 +38,7 @@ use glam::{BVec3, IVec3, Vec3};
 
 use crate::geom::{Face, IAabb};
 
+mod guess;
 mod start;
 
 pub(crate) use start::start_rule;

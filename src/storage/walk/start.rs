@@ -152,8 +152,19 @@ impl Walk {
     /// Places the walk, inside the volume by `key`, in the cell it is in at
     /// `key`: each moving axis settled from its first coordinate inside the
     /// volume, the cell's key the latest of their entry crossings. `None`
-    /// when the ray has left the volume by `key`.
+    /// when the ray has left the volume by `key`. Guessed on three lanes
+    /// first (`guess.rs`), searched step by step when a guess is off.
     fn settle_all(&mut self, key: Key) -> Option<()> {
+        match self.place_by_guess(key) {
+            Some(true) => Some(()),
+            Some(false) => None,
+            None => self.settle_stepwise(key),
+        }
+    }
+
+    /// [`Walk::settle_all`] by the search of each axis from its first
+    /// coordinate inside the volume: what decides when a guess is off.
+    pub(super) fn settle_stepwise(&mut self, key: Key) -> Option<()> {
         let mut entered = Key::BEFORE;
         for axis in 0..3 {
             let s = self.step[axis];

@@ -1,0 +1,236 @@
+//! Placing a walk at a later key on three lanes at once: each moving axis'
+//! coordinate guessed from the point at the key and kept only when the two
+//! key comparisons the stepwise search (`Walk::settle`) would make first
+//! both agree with it.
+//!
+//! Along one axis the crossing times are monotone in the plane coordinate
+//! (one subtraction and one multiplication, each rounded monotonically), so
+//! at most one coordinate `c` has both "entered before the key" (or is the
+//! first coordinate searched) and "not left before the key" (or is the last):
+//! the coordinate the stepwise search ends on. A guess that passes both
+//! tests is therefore that coordinate, whatever the guess was; a guess that
+//! fails either is handed to the stepwise search. Primary rays placed at
+//! their tile's clear distance pass on every axis almost always.
+
+use glam::{BVec3A, IVec3, Vec3A};
+
+use crate::storage::walk::{Key, Walk};
+
+/// Lane indices as floats, for the axis part of key comparisons.
+const LANE: Vec3A = Vec3A::new(0.0, 1.0, 2.0);
+
+/// `a < b` per lane for keys `(a, lane)` against the one key `(t, axis)`.
+#[inline]
+fn keys_before(a: Vec3A, key: Key) -> BVec3A {
+    let t = Vec3A::splat(key.t);
+    a.cmplt(t) | (a.cmpeq(t) & LANE.cmplt(Vec3A::splat(f32::from(key.axis))))
+}
+
+/// `select(mask, a, b)` for integer lanes.
+#[inline]
+fn pick(mask: BVec3A, a: IVec3, b: IVec3) -> IVec3 {
+    let mask = mask.bitmask();
+    IVec3::new(
+        if mask & 1 != 0 { a.x } else { b.x },
+        if mask & 2 != 0 { a.y } else { b.y },
+        if mask & 4 != 0 { a.z } else { b.z },
+    )
+}
+
+impl Walk {
+    /// What `settle_all` does, decided on three lanes when every moving
+    /// axis' guess checks out: `Some(true)` placed in the cell the ray is in
+    /// at `key` (with its entry key and exit crossings), `Some(false)` when
+    /// the ray has left the volume by `key`, `None` (nothing changed) when
+    /// a guess is off and the stepwise search must decide.
+    #[inline]
+    pub(super) fn place_by_guess(&mut self, key: Key) -> Option<bool> {
+        let origin = Vec3A::from(self.origin);
+        let inv_dir = Vec3A::from(self.inv_dir);
+        let (lo, hi, start, step) = (self.lo, self.hi, self.start, self.step);
+        let up = step.cmpgt(IVec3::ZERO);
+        let moving = BVec3A::from_array(step.cmpne(IVec3::ZERO).into());
+        // The search runs from the start (inside the volume) or the near
+        // face to one past the far face, as `settle_all` searches it.
+        let near = IVec3::select(up, lo, hi - 1);
+        let limit = IVec3::select(up, hi, lo - 1);
+        let start_inside = start.cmpge(lo) & start.cmplt(hi);
+        let from = IVec3::select(start_inside, start, near);
+        // The cell of the point at the key, as `floor` (truncation, one
+        // down where that rounded up), clamped into the searched range: any
+        // guess is sound, the tests below decide.
+        let point = origin + Vec3A::from(self.dir) * key.t;
+        let truncated = point.as_ivec3();
+        let rounded_up = BVec3A::from_array(truncated.as_vec3a().cmpgt(point).into());
+        let guess = truncated - pick(rounded_up, IVec3::ONE, IVec3::ZERO);
+        let c = guess.clamp(from.min(limit), from.max(limit));
+        // Entry and exit planes of `c`: moving up a cell is entered through
+        // its lower plane and left through its upper one.
+        let entry_plane = IVec3::select(up, c, c + 1);
+        let exit_plane = IVec3::select(up, c + 1, c);
+        let at_start = BVec3A::from_array(c.cmpeq(start).into());
+        let start_t = Vec3A::from_array(self.start_keys.map(|k| k.t));
+        let entry_t = Vec3A::select(
+            at_start,
+            start_t,
+            (entry_plane.as_vec3a() - origin) * inv_dir,
+        );
+        let exit_t = (exit_plane.as_vec3a() - origin) * inv_dir;
+        let at_from = BVec3A::from_array(c.cmpeq(from).into());
+        let at_limit = BVec3A::from_array(c.cmpeq(limit).into());
+        let entered = at_from | keys_before(entry_t, key);
+        let not_left = at_limit | !keys_before(exit_t, key);
+        if (!(entered & not_left) & moving).any() {
+            return None;
+        }
+        if (at_limit & moving).any() {
+            return Some(false);
+        }
+        // Placed: the cell, its entry key (the latest of the moving axes'
+        // entries, ties to the highest axis, as `Key::lt` orders them) and
+        // its exit crossings; an axis that does not move keeps its start.
+        let moving_mask = moving.bitmask();
+        let mut key_in = Key::BEFORE;
+        for axis in 0..3 {
+            if moving_mask >> axis & 1 == 0 {
+                continue;
+            }
+            self.cell[axis] = c[axis];
+            let entry = if c[axis] == start[axis] {
+                self.start_keys[axis]
+            } else {
+                Key {
+                    t: entry_t[axis],
+                    axis: axis as u8,
+                }
+            };
+            if key_in.lt(entry) {
+                key_in = entry;
+            }
+        }
+        self.key = key_in;
+        let exits = Vec3A::select(moving, exit_t, Vec3A::INFINITY);
+        self.next_t = exits.to_array();
+        Some(true)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{IVec3, Vec3};
+
+    use crate::geom::{IAabb, Ray};
+    use crate::storage::walk::{Key, Walk};
+
+    /// A small deterministic generator (xorshift64*), so failures repeat.
+    struct Rng(u64);
+
+    impl Rng {
+        fn next(&mut self) -> u64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+        }
+        fn unit(&mut self) -> f32 {
+            (self.next() >> 40) as f32 / (1u64 << 24) as f32
+        }
+        fn range(&mut self, lo: f32, hi: f32) -> f32 {
+            lo + (hi - lo) * self.unit()
+        }
+        fn int(&mut self, lo: i32, hi: i32) -> i32 {
+            lo + (self.next() % (hi - lo) as u64) as i32
+        }
+    }
+
+    /// A coordinate that is often an integer or a half, as rays of a
+    /// renderer on grid cameras are.
+    fn coordinate(rng: &mut Rng, span: f32) -> f32 {
+        match rng.next() % 4 {
+            0 => rng.range(-span, span).round(),
+            1 => rng.range(-span, span).round() + 0.5,
+            _ => rng.range(-span, span),
+        }
+    }
+
+    fn direction(rng: &mut Rng) -> Vec3 {
+        let mut d = Vec3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        );
+        // Axis-aligned and diagonal rays, where ties and idle axes live.
+        match rng.next() % 6 {
+            0 => d[(rng.next() % 3) as usize] = 0.0,
+            1 => d = Vec3::new(1.0, 1.0, 1.0) * d.signum(),
+            _ => {}
+        }
+        d
+    }
+
+    /// Keys at and after the walk's entry: random times, and the exact
+    /// crossing times of planes on every axis (ties with every lane).
+    fn later_key(rng: &mut Rng, walk: &Walk) -> Key {
+        let t0 = walk.key.t.max(0.0);
+        let t = if rng.next() % 2 == 0 {
+            rng.range(t0, t0 + 80.0)
+        } else {
+            let axis = (rng.next() % 3) as usize;
+            let plane = walk.cell[axis] + rng.int(-20, 20);
+            walk.crossing(axis, plane).t
+        };
+        Key {
+            t,
+            axis: (rng.next() % 3) as u8,
+        }
+    }
+
+    /// The lane placement decides as the stepwise search does: the same
+    /// cell, entry key and exit crossings, or the same "left the volume",
+    /// whenever it decides at all; and it decides for most keys.
+    #[test]
+    fn guesses_agree_with_the_stepwise_search() {
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        let (mut decided, mut cases) = (0u32, 0u32);
+        while cases < 60_000 {
+            let lo = IVec3::new(rng.int(-40, 0), rng.int(-40, 0), rng.int(-40, 0));
+            let size = IVec3::new(rng.int(1, 40), rng.int(1, 40), rng.int(1, 40));
+            let bounds = IAabb {
+                min: lo,
+                max: lo + size,
+            };
+            let origin = Vec3::new(
+                coordinate(&mut rng, 60.0),
+                coordinate(&mut rng, 60.0),
+                coordinate(&mut rng, 60.0),
+            );
+            let Ok(ray) = Ray::new(origin, direction(&mut rng)) else {
+                continue;
+            };
+            let Some(walk) = Walk::start(&ray, &bounds) else {
+                continue;
+            };
+            let key = later_key(&mut rng, &walk);
+            if !walk.key.lt(key) || !key.t.is_finite() {
+                continue;
+            }
+            cases += 1;
+            let mut guessed = walk.clone();
+            let mut searched = walk.clone();
+            let expected = searched.settle_stepwise(key);
+            let Some(placed) = guessed.place_by_guess(key) else {
+                continue;
+            };
+            decided += 1;
+            assert_eq!(placed, expected.is_some(), "{ray:?} {bounds:?} {key:?}");
+            if placed {
+                assert_eq!(guessed.cell, searched.cell, "{ray:?} {bounds:?} {key:?}");
+                assert_eq!(guessed.key, searched.key, "{ray:?} {bounds:?} {key:?}");
+                let bits = |t: [f32; 3]| t.map(f32::to_bits);
+                assert_eq!(bits(guessed.next_t), bits(searched.next_t));
+            }
+        }
+        // Most guesses hold: the fast path is the common path.
+        assert!(decided > cases / 2, "{decided} of {cases} decided");
+    }
+}
