@@ -85,7 +85,7 @@ pub use render::options::{Fog, Occlusion, RenderOptions, DEFAULT_SUN};
 pub use render::scalar::{render, render_pixel, render_region, render_span};
 pub use render::shade::{pack, shade, sky, unpack, FLAT_SKY, SKY_HORIZON, SKY_ZENITH};
 pub use render::stats::{RayStats, Rect};
-pub use scene::{Hit, Scene, Traced};
+pub use scene::{Hit, Scene, Traced, WalkMemory};
 pub use source::noise::{Perlin, SplitMix64};
 pub use source::terrain::{VoxelGenerator, GRASS, HEIGHT, MOUNTAIN, ROUGHNESS, SCALE, SNOW, WATER};
 #[cfg(feature = "vox")]

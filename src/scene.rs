@@ -1,6 +1,8 @@
 //! The `Scene` trait: what the tracer needs from a storage, and the `Hit`
 //! every storage returns.
 
+use core::marker::PhantomData;
+
 use glam::IVec3;
 
 use crate::frustum::Frustum;
@@ -56,6 +58,54 @@ pub struct Traced {
     pub steps: u32,
 }
 
+/// Entries of a [`WalkMemory`]'s path: one per level of the deepest tree
+/// a storage of this crate builds.
+pub(crate) const MEMORY_PATH: usize = 32;
+
+/// What a storage keeps between the walks of coherent rays (the pixels of
+/// a tile, the occlusion rays of neighbouring hits) so that a ray can begin
+/// where the previous one already knows its way: for the octree, the path
+/// of nodes down to where the last walk ended.
+///
+/// # Guarantees
+/// A memory only ever changes where a walk begins its work, never what it
+/// finds: [`Scene::trace_from_with`] and [`Scene::trace_within_with`] give
+/// the same hit, bit for bit, with a new memory, a used one, or one another
+/// scene wrote (it is tied to the scene that wrote it, which the lifetime
+/// keeps alive, and ignored by every other).
+#[derive(Clone, Debug)]
+pub struct WalkMemory<'s> {
+    /// Address of the scene that wrote the memory (0: none yet).
+    pub(crate) owner: usize,
+    /// Node indices by depth, valid for depths `1..=depth`.
+    pub(crate) path: [u32; MEMORY_PATH],
+    /// Deepest valid entry of `path`.
+    pub(crate) depth: usize,
+    /// A position inside the node at `depth`, relative to the tree's corner.
+    pub(crate) corner: IVec3,
+    scene: PhantomData<&'s ()>,
+}
+
+impl WalkMemory<'_> {
+    /// A memory that knows nothing yet.
+    #[must_use]
+    pub fn new() -> Self {
+        WalkMemory {
+            owner: 0,
+            path: [0; MEMORY_PATH],
+            depth: 0,
+            corner: IVec3::ZERO,
+            scene: PhantomData,
+        }
+    }
+}
+
+impl Default for WalkMemory<'_> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 /// A voxel storage the tracer can shoot rays into.
 ///
 /// # Guarantees
@@ -97,6 +147,21 @@ pub trait Scene {
         self.trace_counted(ray)
     }
 
+    /// [`Scene::trace_from`] for one of a run of coherent rays sharing
+    /// `memory` (the pixels of a tile, in order): the same hit, bit for bit;
+    /// the storage may begin from what the previous walk left in `memory`,
+    /// and leaves there what the next one can use. The default forgets.
+    #[inline]
+    fn trace_from_with<'s>(
+        &'s self,
+        ray: &Ray,
+        t_start: f32,
+        memory: &mut WalkMemory<'s>,
+    ) -> Traced {
+        let _ = memory;
+        self.trace_from(ray, t_start)
+    }
+
     /// The first solid voxel along `ray`.
     #[inline]
     fn trace(&self, ray: &Ray) -> Option<Hit> {
@@ -110,6 +175,20 @@ pub trait Scene {
     #[inline]
     fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         self.trace(ray).filter(|h| h.t <= t_max)
+    }
+
+    /// [`Scene::trace_within`] for one of a run of coherent rays sharing
+    /// `memory` (the occlusion rays of neighbouring hits): the same hit, bit
+    /// for bit, as [`Scene::trace_from_with`] is for `trace_from`.
+    #[inline]
+    fn trace_within_with<'s>(
+        &'s self,
+        ray: &Ray,
+        t_max: f32,
+        memory: &mut WalkMemory<'s>,
+    ) -> Option<Hit> {
+        let _ = memory;
+        self.trace_within(ray, t_max)
     }
 
     /// Bytes of voxel storage this scene holds (arrays and palette).
@@ -139,6 +218,24 @@ impl<S: Scene + ?Sized> Scene for &S {
 
     fn trace_from(&self, ray: &Ray, t_start: f32) -> Traced {
         (**self).trace_from(ray, t_start)
+    }
+
+    fn trace_from_with<'s>(
+        &'s self,
+        ray: &Ray,
+        t_start: f32,
+        memory: &mut WalkMemory<'s>,
+    ) -> Traced {
+        (**self).trace_from_with(ray, t_start, memory)
+    }
+
+    fn trace_within_with<'s>(
+        &'s self,
+        ray: &Ray,
+        t_max: f32,
+        memory: &mut WalkMemory<'s>,
+    ) -> Option<Hit> {
+        (**self).trace_within_with(ray, t_max, memory)
     }
 
     fn storage_bytes(&self) -> usize {

@@ -7,7 +7,7 @@
 use crate::error::Error;
 use crate::render::camera::Camera;
 use crate::render::options::RenderOptions;
-use crate::render::shader::{FrameJob, Kernel, Shader};
+use crate::render::shader::{FrameJob, Kernel, Memories, Shader};
 use crate::render::stats::{RayStats, Rect};
 use crate::render::tiles::render_tiles;
 use crate::scene::Scene;
@@ -31,7 +31,7 @@ pub fn render_pixel<S: Scene + ?Sized>(
     impl<S: Scene + ?Sized> FrameJob for Pixel<'_, S> {
         type Output = (u32, RayStats);
         fn run<K: Kernel>(self, kernel: &K) -> (u32, RayStats) {
-            kernel.pixel(self.scene, self.x, self.y, 0.0)
+            kernel.pixel(self.scene, self.x, self.y, 0.0, &mut Memories::default())
         }
     }
     Shader::new(options, camera).dispatch(Pixel { scene, x, y })

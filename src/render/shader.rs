@@ -17,7 +17,7 @@ use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{face_index, face_weights, fog_blend, lit, pack, sky, FLAT_SKY};
 use crate::render::stats::RayStats;
 use crate::scene::Hit;
-use crate::scene::Scene;
+use crate::scene::{Scene, WalkMemory};
 
 /// How wide the debug view's edges are: a fraction of a pixel's footprint
 /// each side of the edge.
@@ -108,13 +108,33 @@ pub(crate) trait FrameJob {
     fn run<K: Kernel>(self, kernel: &K) -> Self::Output;
 }
 
+/// What the walks of neighbouring pixels share, one memory per kind of ray
+/// (each kind's rays are coherent with each other, not with the others).
+#[derive(Default)]
+pub(crate) struct Memories<'s> {
+    /// Rays from the camera.
+    primary: WalkMemory<'s>,
+    /// Rays toward the sun.
+    shadow: WalkMemory<'s>,
+    /// Ambient occlusion rays.
+    occlusion: WalkMemory<'s>,
+}
+
 /// Computes pixels with one fixed set of effects.
 pub(crate) trait Kernel: Sync {
     /// Pixel `(x, y)` of the frame: packed color and the rays it traced.
     /// Its primary rays hit nothing before `t_start` (0 when unknown), so
-    /// they may start walking there; the pixel is the same for any such
-    /// `t_start`.
-    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32, t_start: f32) -> (u32, RayStats);
+    /// they may start walking there; its walks may begin from what the
+    /// previous pixel's left in `memory`. The pixel is the same for any
+    /// such `t_start` and any memory.
+    fn pixel<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        x: u32,
+        y: u32,
+        t_start: f32,
+        memory: &mut Memories<'s>,
+    ) -> (u32, RayStats);
 
     /// Whether the kernel's primary rays use a tile's clear distance (the
     /// debug view walks from the camera to show every box).
@@ -137,9 +157,18 @@ struct Flat<'s, 'c>(&'s Shader<'c>);
 
 impl Kernel for Flat<'_, '_> {
     #[inline]
-    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32, t_start: f32) -> (u32, RayStats) {
+    fn pixel<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        x: u32,
+        y: u32,
+        t_start: f32,
+        memory: &mut Memories<'s>,
+    ) -> (u32, RayStats) {
         let ray = self.0.camera.get_ray(x, y);
-        let hit = scene.trace_from(&ray, t_start).hit;
+        let hit = scene
+            .trace_from_with(&ray, t_start, &mut memory.primary)
+            .hit;
         let color = hit.map_or(FLAT_SKY, |h| h.voxel.color);
         (pack(color), primary(hit.as_ref()))
     }
@@ -149,7 +178,14 @@ impl Kernel for Flat<'_, '_> {
 struct DebugView<'s, 'c>(&'s Shader<'c>);
 
 impl Kernel for DebugView<'_, '_> {
-    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32, _: f32) -> (u32, RayStats) {
+    fn pixel<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        x: u32,
+        y: u32,
+        _: f32,
+        _: &mut Memories<'s>,
+    ) -> (u32, RayStats) {
         let ray = self.0.camera.get_ray(x, y);
         let mut edge = None;
         let traced = scene.trace_visiting(&ray, &mut |cube| {
@@ -182,11 +218,18 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kerne
     for Lit<'_, '_, SHADOWS, AO, FOG, AA>
 {
     #[inline]
-    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32, t_start: f32) -> (u32, RayStats) {
+    fn pixel<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        x: u32,
+        y: u32,
+        t_start: f32,
+        memory: &mut Memories<'s>,
+    ) -> (u32, RayStats) {
         let camera = self.0.camera;
         if !AA {
             let ray = camera.get_ray(x, y);
-            let (color, stats) = self.sample(scene, &ray, t_start, x, y, 0);
+            let (color, stats) = self.sample(scene, &ray, t_start, x, y, 0, memory);
             return (pack(color), stats);
         }
         let samples = u32::from(self.0.options.samples);
@@ -196,7 +239,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kerne
         for s in 0..samples {
             let offset = r2(s, key);
             let ray = camera.get_ray_at(x as f32 + offset.x, y as f32 + offset.y);
-            let (color, rays) = self.sample(scene, &ray, t_start, x, y, s);
+            let (color, rays) = self.sample(scene, &ray, t_start, x, y, s, memory);
             sum += color.as_uvec3();
             stats += rays;
         }
@@ -211,18 +254,20 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
 {
     /// One camera sample, its walk starting at `t_start`: its color and
     /// rays.
+    #[allow(clippy::too_many_arguments)]
     #[inline]
-    fn sample<S: Scene + ?Sized>(
+    fn sample<'s, S: Scene + ?Sized>(
         &self,
-        scene: &S,
+        scene: &'s S,
         ray: &Ray,
         t_start: f32,
         x: u32,
         y: u32,
         sample: u32,
+        memory: &mut Memories<'s>,
     ) -> (U8Vec3, RayStats) {
         let shader = self.0;
-        let hit = scene.trace_from(ray, t_start).hit;
+        let hit = scene.trace_from_with(ray, t_start, &mut memory.primary).hit;
         let mut stats = primary(hit.as_ref());
         let Some(hit) = hit else {
             return (sky(ray.dir()), stats);
@@ -232,7 +277,8 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
         if SHADOWS && shader.sunlit[face] {
             stats.shadow_rays += 1;
             if let Some(shadow) = secondary(ray, &hit, shader.sun) {
-                if scene.trace(&shadow).is_some() {
+                let blocker = scene.trace_within_with(&shadow, f32::INFINITY, &mut memory.shadow);
+                if blocker.is_some() {
                     light = u32::from(shader.shadowed[face]);
                 }
             }
@@ -245,7 +291,9 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
                 for j in 0..rays {
                     let dir = around(entered, cosine_hemisphere(r2(j, key)));
                     let blocked = secondary(ray, &hit, dir)
-                        .and_then(|r| scene.trace_within(&r, ao.distance))
+                        .and_then(|r| {
+                            scene.trace_within_with(&r, ao.distance, &mut memory.occlusion)
+                        })
                         .is_some();
                     open += u32::from(!blocked);
                 }

@@ -8,7 +8,7 @@
 //! byte-identical.
 
 use crate::render::camera::Camera;
-use crate::render::shader::Kernel;
+use crate::render::shader::{Kernel, Memories};
 use crate::render::stats::{RayStats, Rect};
 use crate::scene::Scene;
 
@@ -30,6 +30,9 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
     mut put: impl FnMut(u32, u32, u32),
 ) -> RayStats {
     let mut stats = RayStats::default();
+    // One memory for the whole rectangle: a tile's first ray begins from
+    // the last ray of the tile before, its neighbour.
+    let mut memory = Memories::default();
     // Offsets inside the rectangle, so that no sum passes u32::MAX for a
     // rectangle that reaches the last pixel of the largest frame.
     for dy0 in (0..rect.height).step_by(TILE as usize) {
@@ -45,7 +48,7 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
             for dy in dy0..dy1 {
                 for dx in dx0..dx1 {
                     let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
-                    let (rgba, rays) = kernel.pixel(scene, x, y, t_start);
+                    let (rgba, rays) = kernel.pixel(scene, x, y, t_start, &mut memory);
                     put(dx, dy, rgba);
                     stats += rays;
                 }

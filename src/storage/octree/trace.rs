@@ -18,7 +18,7 @@ use glam::IVec3;
 
 use crate::frustum::Frustum;
 use crate::geom::{IAabb, Ray, MAX_COORD};
-use crate::scene::{Hit, Scene, Traced};
+use crate::scene::{Hit, Scene, Traced, WalkMemory, MEMORY_PATH};
 use crate::storage::octree::lanes::Lanes;
 use crate::storage::octree::{brick_bit, child_rank, BrickMaterials, Node, NodeKind, OctreeScene};
 use crate::storage::walk::{Key, Walk};
@@ -36,6 +36,9 @@ const MAX_DEPTH: usize = (2 * MAX_COORD as u32).trailing_zeros() as usize - 1;
 /// indexing it modulo its length needs no bounds check.
 const PATH: usize = (MAX_DEPTH + 1).next_power_of_two();
 
+// The path lives in a `WalkMemory`.
+const _: () = assert!(PATH == MEMORY_PATH);
+
 /// Occupancy bits of the 2x2x2 group at the brick's local origin: `x | y << 2
 /// | z << 4` for `x, y, z` in `{0, 1}`.
 const GROUP: u64 = 0x0033_0033;
@@ -46,7 +49,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
     }
 
     fn trace_counted(&self, ray: &Ray) -> Traced {
-        self.walk(ray, self.occupied, 0.0, f32::INFINITY, keep_walking)
+        let memory = &mut WalkMemory::new();
+        self.walk(ray, self.occupied, 0.0, f32::INFINITY, keep_walking, memory)
     }
 
     fn clear_distance(&self, frustum: &Frustum) -> f32 {
@@ -54,6 +58,15 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
     }
 
     fn trace_from(&self, ray: &Ray, t_start: f32) -> Traced {
+        self.trace_from_with(ray, t_start, &mut WalkMemory::new())
+    }
+
+    fn trace_from_with<'s>(
+        &'s self,
+        ray: &Ray,
+        t_start: f32,
+        memory: &mut WalkMemory<'s>,
+    ) -> Traced {
         // A clear distance of 0 mostly means the camera touches a solid
         // voxel, and then most rays hit the cell they start in: one lookup
         // answers them as the walk would, without building it.
@@ -65,18 +78,35 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
                 return Traced { hit, steps: 0 };
             }
         }
-        self.walk(ray, self.occupied, t_start, f32::INFINITY, keep_walking)
+        self.walk(
+            ray,
+            self.occupied,
+            t_start,
+            f32::INFINITY,
+            keep_walking,
+            memory,
+        )
     }
 
     /// Walks the whole volume (not only the occupied box), so the debug
     /// view shows every box of the tree a ray crosses.
     fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced {
-        self.walk(ray, self.bounds, 0.0, f32::INFINITY, visit)
+        let memory = &mut WalkMemory::new();
+        self.walk(ray, self.bounds, 0.0, f32::INFINITY, visit, memory)
     }
 
     fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        let hit = self.walk(ray, self.occupied, 0.0, t_max, keep_walking).hit;
-        hit.filter(|h| h.t <= t_max)
+        self.trace_within_with(ray, t_max, &mut WalkMemory::new())
+    }
+
+    fn trace_within_with<'s>(
+        &'s self,
+        ray: &Ray,
+        t_max: f32,
+        memory: &mut WalkMemory<'s>,
+    ) -> Option<Hit> {
+        let hit = self.walk(ray, self.occupied, 0.0, t_max, keep_walking, memory);
+        hit.hit.filter(|h| h.t <= t_max)
     }
 
     fn storage_bytes(&self) -> usize {
@@ -91,7 +121,10 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// The box-at-a-time walk through `region` (the occupied box, or the
     /// whole volume) from where the ray is at `t_start` (0: its start),
     /// showing `visit` each empty cube it leaves and giving up once it
-    /// enters a cube farther than `t_max`; monomorphized so that tracing
+    /// enters a cube farther than `t_max`, its path kept in `memory`: it
+    /// begins at the deepest remembered node that still holds its start
+    /// (what the restart after a move does, across rays) and leaves there
+    /// the node it ended in. Monomorphized so that tracing
     /// without a visitor pays nothing for it. Not inlined: every trace
     /// without a visitor shares one copy (a quarter of the firmware's
     /// code otherwise), for the cost of one call per ray.
@@ -106,6 +139,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         t_start: f32,
         t_max: f32,
         mut visit: V,
+        memory: &mut WalkMemory,
     ) -> Traced {
         let missed = Traced {
             hit: None,
@@ -128,9 +162,6 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         // path[d] (1 <= d <= depth): index of the node at depth d holding
         // the position, whose cube has side 2^(root_log - d); `node` is the
         // one at `depth` itself.
-        let mut path = [0u32; PATH];
-        let mut depth = 0;
-        let mut node = self.root;
         // The position: the ray is, at `key`, in the cube of side
         // 2^known_log at `corner` (relative to `min`, where every cube of
         // the tree starts at a multiple of its side).
@@ -138,6 +169,32 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let mut corner = walk.cell() - min;
         let mut known_log = 0;
         let mut steps = 0;
+        // Begin at the deepest node the last walk of this memory passed
+        // through whose cube holds the start: the nodes above it are the
+        // ones a descent from the root would load.
+        let owner = self as *const Self as usize;
+        let mut depth = 0;
+        let mut node = self.root;
+        if memory.owner == owner {
+            let changed = memory.corner ^ corner;
+            let changed = (changed.x | changed.y | changed.z) as u32;
+            let keep = root_log.saturating_sub(u32::BITS - changed.leading_zeros()) as usize;
+            depth = keep.min(memory.depth);
+            if depth > 0 {
+                node = nodes[memory.path[depth % PATH] as usize];
+            }
+        }
+        memory.owner = owner;
+        let path = &mut memory.path;
+        // Where the walk ends, for the next one: a position inside the node
+        // at `depth` (whose path entries are all written).
+        macro_rules! end {
+            ($at:expr, $traced:expr) => {{
+                memory.corner = $at;
+                memory.depth = depth;
+                return $traced;
+            }};
+        }
         loop {
             // Down from `depth` to the deepest node holding the position;
             // the empty cube found there has side 2^empty_log.
@@ -159,7 +216,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                     }
                     NodeKind::Solid(material) => {
                         refine(&lanes, key, min, &mut corner, &mut known_log, 0);
-                        return self.hit(&walk, key, min + corner, material, steps);
+                        end!(corner, self.hit(&walk, key, min + corner, material, steps));
                     }
                     NodeKind::Brick {
                         occupancy,
@@ -175,7 +232,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                             break 0;
                         }
                         let material = self.brick_material(occupancy, materials, bit);
-                        return self.hit(&walk, key, min + corner, material, steps);
+                        end!(corner, self.hit(&walk, key, min + corner, material, steps));
                     }
                 }
             };
@@ -190,12 +247,12 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                 max: min + cube + side,
             };
             if !visit(empty) {
-                return Traced { hit: None, steps };
+                end!(cube, Traced { hit: None, steps });
             }
             if exit.t == f32::INFINITY || exit.t > t_max {
                 // No plane of the cube is ever reached in f32, or the rest
                 // of the ray is beyond the caller's reach.
-                return Traced { hit: None, steps };
+                end!(cube, Traced { hit: None, steps });
             }
             let axis = exit.axis as usize;
             corner = cube;
@@ -215,7 +272,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                 leaves_region.lt(exit)
             };
             if left {
-                return Traced { hit: None, steps };
+                end!(cube, Traced { hit: None, steps });
             }
             known_log = empty_log;
             // The nodes whose cubes are wider than every changed bit still

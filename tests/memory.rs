@@ -1,0 +1,89 @@
+//! A `WalkMemory` only moves where walks begin: tracing with a memory shared
+//! by a run of rays (coherent, incoherent, alternating between two scenes)
+//! gives every ray the hit it gets alone, bit for bit, on both backends.
+
+mod common;
+
+use common::rays::{ray_for, Rng};
+use common::sources::speckle;
+use voxtrace::glam::{IVec3, Vec3};
+use voxtrace::{DenseScene, IAabb, OctreeScene, Ray, Scene, VoxelGenerator, WalkMemory};
+
+/// Rays of a run: each the last one nudged (neighbouring pixels), or, now
+/// and then, a fresh one from anywhere.
+fn run_of_rays(rng: &mut Rng, bounds: &IAabb, len: usize) -> Vec<Ray> {
+    let mut rays = Vec::with_capacity(len);
+    let mut ray = ray_for(rng, bounds);
+    for _ in 0..len {
+        if rng.below(8) == 0 {
+            ray = ray_for(rng, bounds);
+        } else {
+            let nudge = Vec3::new(
+                rng.range(-0.02, 0.02),
+                rng.range(-0.02, 0.02),
+                rng.range(-0.02, 0.02),
+            );
+            ray = Ray::new(ray.origin(), ray.dir() + nudge).unwrap_or(ray);
+        }
+        rays.push(ray);
+    }
+    rays
+}
+
+/// Every ray of `rays` against `scene`: with the shared memories, the hit of
+/// the ray traced alone, for `trace_from_with` at 0 and `trace_within_with`
+/// at a reach that cuts some hits.
+fn assert_memory_changes_nothing<'s, S: Scene>(
+    scene: &'s S,
+    rays: &[Ray],
+    primary: &mut WalkMemory<'s>,
+    within: &mut WalkMemory<'s>,
+) {
+    let reach = scene.bounds().size().max_element() as f32 / 3.0;
+    for (i, ray) in rays.iter().enumerate() {
+        let alone = scene.trace_counted(ray).hit;
+        let remembered = scene.trace_from_with(ray, 0.0, primary).hit;
+        assert_eq!(remembered, alone, "ray {i}: {ray:?}");
+        if let (Some(a), Some(b)) = (alone, remembered) {
+            assert_eq!(a.t.to_bits(), b.t.to_bits(), "ray {i}: {ray:?}");
+        }
+        let cut = scene.trace_within_with(ray, reach, within);
+        assert_eq!(
+            cut,
+            scene.trace_within(ray, reach),
+            "ray {i} within {reach}"
+        );
+    }
+}
+
+#[test]
+fn shared_memories_give_every_ray_its_own_hit() {
+    let bounds = IAabb::new(IVec3::splat(-24), IVec3::new(24, 20, 28));
+    let mut rng = Rng::new(0x5eed_0001);
+    for (seed, percent) in [(1, 3), (2, 20), (3, 60)] {
+        let source = speckle(seed, percent);
+        let octree = OctreeScene::build(&source, bounds).unwrap();
+        let dense = DenseScene::build(&source, bounds).unwrap();
+        let rays = run_of_rays(&mut rng, &bounds, 3000);
+        let (mut a, mut b) = (WalkMemory::new(), WalkMemory::new());
+        assert_memory_changes_nothing(&octree, &rays, &mut a, &mut b);
+        let (mut a, mut b) = (WalkMemory::new(), WalkMemory::new());
+        assert_memory_changes_nothing(&dense, &rays, &mut a, &mut b);
+    }
+}
+
+#[test]
+fn a_memory_shared_by_two_scenes_is_ignored_by_the_other() {
+    let bounds = IAabb::new(IVec3::splat(-32), IVec3::splat(32));
+    let sparse = OctreeScene::build(&speckle(7, 4), bounds).unwrap();
+    let terrain = OctreeScene::build(&VoxelGenerator::new(5), bounds).unwrap();
+    let mut rng = Rng::new(0x5eed_0002);
+    let rays = run_of_rays(&mut rng, &bounds, 4000);
+    let mut memory = WalkMemory::new();
+    for (i, ray) in rays.iter().enumerate() {
+        // Alternate scenes ray by ray: each finds the other's path.
+        let scene = if i % 2 == 0 { &sparse } else { &terrain };
+        let remembered = scene.trace_from_with(ray, 0.0, &mut memory).hit;
+        assert_eq!(remembered, scene.trace_counted(ray).hit, "ray {i}: {ray:?}");
+    }
+}
