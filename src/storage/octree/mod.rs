@@ -20,6 +20,7 @@ pub(crate) mod build;
 #[cfg(feature = "rayon")]
 pub(crate) mod build_par;
 pub(crate) mod lanes;
+mod memory;
 pub(crate) mod trace;
 
 /// Side of a leaf brick: 4x4x4 voxels, one `u64` of occupancy.

@@ -34,7 +34,7 @@ const MAX_DEPTH: usize = (2 * MAX_COORD as u32).trailing_zeros() as usize - 1;
 
 /// Entries of the path array: a power of two above `MAX_DEPTH`, so that
 /// indexing it modulo its length needs no bounds check.
-const PATH: usize = (MAX_DEPTH + 1).next_power_of_two();
+pub(super) const PATH: usize = (MAX_DEPTH + 1).next_power_of_two();
 
 // The path lives in a `WalkMemory`.
 const _: () = assert!(PATH == MEMORY_PATH);
@@ -72,7 +72,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
         // answers them as the walk would, without building it.
         if t_start == 0.0 {
             let (cell, face) = Walk::start_cell(ray);
-            let material = self.material(cell);
+            let material = self.material_with(cell, memory);
             if material != 0 {
                 let hit = Hit::from_palette(&self.palette, cell, face, 0.0, material);
                 return Traced { hit, steps: 0 };
@@ -169,22 +169,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let mut corner = walk.cell() - min;
         let mut known_log = 0;
         let mut steps = 0;
-        // Begin at the deepest node the last walk of this memory passed
-        // through whose cube holds the start: the nodes above it are the
-        // ones a descent from the root would load.
-        let owner = self as *const Self as usize;
-        let mut depth = 0;
-        let mut node = self.root;
-        if memory.owner == owner {
-            let changed = memory.corner ^ corner;
-            let changed = (changed.x | changed.y | changed.z) as u32;
-            let keep = root_log.saturating_sub(u32::BITS - changed.leading_zeros()) as usize;
-            depth = keep.min(memory.depth);
-            if depth > 0 {
-                node = nodes[memory.path[depth % PATH] as usize];
-            }
-        }
-        memory.owner = owner;
+        let (mut depth, mut node) = self.recall(corner, memory);
         let path = &mut memory.path;
         // Where the walk ends, for the next one: a position inside the node
         // at `depth` (whose path entries are all written).

@@ -4,7 +4,7 @@
 //! distance. Every coordinate is settled by exact key comparisons, so a
 //! walk begun anywhere is in the cell single steps from the start reach.
 
-use glam::IVec3;
+use glam::{BVec3A, IVec3, Vec3A};
 
 use crate::geom::{Face, IAabb, Ray};
 use crate::math::floor_cell;
@@ -46,16 +46,14 @@ impl Walk {
     /// it reports (its distance is 0): what a walk from the start reports
     /// when its first cell is solid, without the walk.
     pub(crate) fn start_cell(ray: &Ray) -> (IVec3, Option<Face>) {
-        let (step, start, start_keys) = start_rule(ray);
-        let mut key = Key::BEFORE;
-        for k in start_keys {
-            if key.lt(k) {
-                key = k;
-            }
-        }
-        let axis = usize::from(key.axis);
-        let face = (key.t != f32::NEG_INFINITY).then(|| Face::entered(axis, step[axis] > 0));
-        (IVec3::from_array(start), face)
+        let (step, start, on_plane) = start_lanes(ray);
+        // The latest start key is that of the highest axis on its plane.
+        let on_plane = on_plane.bitmask();
+        let face = (on_plane != 0).then(|| {
+            let axis = (u32::BITS - 1 - on_plane.leading_zeros()) as usize;
+            Face::entered(axis, step[axis] > 0)
+        });
+        (start, face)
     }
 
     /// The walk in its first cell inside `bounds` at or after `not_before`.
@@ -265,31 +263,47 @@ impl Walk {
 /// origin lies on its entry plane, else before everything).
 #[inline]
 pub(crate) fn start_rule(ray: &Ray) -> ([i32; 3], [i32; 3], [Key; 3]) {
-    let (origin, dir, inv_dir) = (ray.origin(), ray.dir(), ray.inv_dir());
-    let mut step = [0; 3];
-    let mut start = [0; 3];
-    let mut start_keys = [Key::BEFORE; 3];
-    for axis in 0..3 {
-        let (o, d) = (origin[axis], dir[axis]);
-        // An infinite reciprocal (a subnormal component) would turn a
-        // crossing at distance 0 into NaN; such an axis never reaches a
-        // plane in f32 anyway, so it counts as not moving.
-        let moving = d != 0.0 && inv_dir[axis].is_finite();
-        let s = i32::from(moving && d > 0.0) - i32::from(moving && d < 0.0);
-        // The start cell's entry plane is floor(o) moving up, ceil(o)
-        // moving down: the origin lies on it exactly when it is an
-        // integer, and then a ray moving down starts in the cell below.
-        // (Saturated cells of huge origins lie outside every volume.)
-        let floor = floor_cell(o);
-        let on_plane = moving && floor as f32 == o;
-        start[axis] = floor.saturating_sub(i32::from(on_plane && s < 0));
-        if on_plane {
-            start_keys[axis] = Key {
-                t: 0.0,
-                axis: axis as u8,
-            };
+    let (step, start, on_plane) = start_lanes(ray);
+    let on_plane = on_plane.bitmask();
+    let key = |axis: u8| {
+        if on_plane >> axis & 1 != 0 {
+            Key { t: 0.0, axis }
+        } else {
+            Key::BEFORE
         }
-        step[axis] = s;
-    }
-    (step, start, start_keys)
+    };
+    (step.to_array(), start.to_array(), [key(0), key(1), key(2)])
+}
+
+/// The start rule on three lanes: the steps, the start cell, and the axes
+/// whose entry plane the origin lies on.
+#[inline]
+fn start_lanes(ray: &Ray) -> (IVec3, IVec3, BVec3A) {
+    let origin = Vec3A::from(ray.origin());
+    let dir = Vec3A::from(ray.dir());
+    // An infinite reciprocal (a subnormal component) would turn a crossing
+    // at distance 0 into NaN; such an axis never reaches a plane in f32
+    // anyway, so it counts as not moving.
+    let finite_inv = Vec3A::from(ray.inv_dir()).abs().cmplt(Vec3A::INFINITY);
+    let moving = dir.cmpne(Vec3A::ZERO) & finite_inv;
+    let up = moving & dir.cmpgt(Vec3A::ZERO);
+    let down = moving & dir.cmplt(Vec3A::ZERO);
+    let ones = |mask: BVec3A| {
+        let bits = mask.bitmask();
+        IVec3::new(
+            (bits & 1) as i32,
+            (bits >> 1 & 1) as i32,
+            (bits >> 2) as i32,
+        )
+    };
+    // The start cell's entry plane is floor(o) moving up, ceil(o) moving
+    // down: the origin lies on it exactly when it is an integer, and then a
+    // ray moving down starts in the cell below. Truncation saturates as
+    // `floor_cell` does (saturated cells of huge origins lie outside every
+    // volume).
+    let truncated = origin.as_ivec3();
+    let floor = truncated.saturating_sub(ones(truncated.as_vec3a().cmpgt(origin)));
+    let on_plane = moving & floor.as_vec3a().cmpeq(origin);
+    let start = floor.saturating_sub(ones(on_plane & down));
+    (ones(up) - ones(down), start, on_plane)
 }
