@@ -51,6 +51,8 @@ cleanup() {
   exit "$status"
 }
 trap cleanup EXIT
+# A signal ends the script through exit, so that the EXIT trap runs.
+trap 'exit 130' INT TERM
 
 # Munge with its own key and socket, so that a munged the machine may run
 # is left alone.

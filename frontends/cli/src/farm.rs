@@ -44,14 +44,20 @@ pub struct TileJob {
     pub out: PathBuf,
 }
 
-/// Refuses, before a random seed is drawn and printed, tiles of a terrain
-/// without `--seed`: every task would draw its own random terrain.
+/// Checks the farm flags before anything else runs (a random seed is
+/// drawn and printed): `--tiles` and `--tile-index` go together, and tiles
+/// of the terrain need `--seed`, since every task would draw its own.
 ///
 /// # Errors
 /// One line naming the fix.
-pub fn check_seed(args: &Args) -> Result<(), String> {
-    match args.farm.tiles {
-        Some(grid) if args.vox.is_none() && args.seed.is_none() => Err(format!(
+pub fn check_flags(args: &Args) -> Result<(), String> {
+    match (args.farm.tiles, &args.farm.tile_index) {
+        (None, Some(_)) => Err("--tile-index needs --tiles CxR".to_string()),
+        (Some(grid), None) => Err(format!(
+            "--tiles {grid} needs --tile-index I (0 to {}) or env:VAR",
+            grid.count() - 1
+        )),
+        (Some(grid), Some(_)) if args.vox.is_none() && args.seed.is_none() => Err(format!(
             "--tiles {grid} needs --seed N: every task would draw its own random terrain"
         )),
         _ => Ok(()),
@@ -61,26 +67,17 @@ pub fn check_seed(args: &Args) -> Result<(), String> {
 /// The tile `args` ask for, if any.
 ///
 /// # Errors
-/// One line: `--tile-index` without `--tiles` or the reverse, an index out
-/// of range or an unset variable (naming the range), a grid finer than the
-/// frame, a random seed (every task would draw its own), a `--vox` file
-/// that cannot be read, or an `--out` that is not PNG.
+/// One line: what [`check_flags`] refuses, an index out of range or an
+/// unset variable (naming the range), a grid finer than the frame, a
+/// `--vox` file that cannot be read, or an `--out` that is not PNG.
 pub fn select(
     args: &Args,
     camera: &Camera,
     options: &RenderOptions,
 ) -> Result<Option<TileJob>, String> {
-    let farm = &args.farm;
-    let (grid, index) = match (farm.tiles, &farm.tile_index) {
-        (None, None) => return Ok(None),
-        (None, Some(_)) => return Err("--tile-index needs --tiles CxR".to_string()),
-        (Some(grid), None) => {
-            return Err(format!(
-                "--tiles {grid} needs --tile-index I (0 to {}) or env:VAR",
-                grid.count() - 1
-            ))
-        }
-        (Some(grid), Some(index)) => (grid, index),
+    check_flags(args)?;
+    let (Some(grid), Some(index)) = (args.farm.tiles, &args.farm.tile_index) else {
+        return Ok(None);
     };
     let (width, height) = (camera.width(), camera.height());
     grid.fits(width, height)?;
@@ -90,7 +87,7 @@ pub fn select(
     })?;
     let rect = grid
         .tile(width, height, tile)
-        .expect("resolve checks the range");
+        .ok_or("the tile index is out of range")?; // resolve checked it
 
     let subject = match (&args.vox, args.seed) {
         (Some(path), _) => {
@@ -99,10 +96,13 @@ pub fn select(
             format!("vox fnv1a64={:016x}", fnv1a64(&bytes))
         }
         (None, Some(seed)) => format!("terrain seed={seed} size={}", args.size),
-        (None, None) => return check_seed(args).map(|()| None),
+        (None, None) => return Err(format!("--tiles {grid} needs --seed N")),
     };
     let settings = settings_text(&subject, args.backend.name(), camera, options);
-    let out = PathBuf::from(tile_name(&args.out.to_string_lossy(), tile, grid.count()));
+    // A path that is not UTF-8 has no `%t` this build could replace.
+    let out = args.out.to_str().map_or(args.out.clone(), |pattern| {
+        PathBuf::from(tile_name(pattern, tile, grid.count()))
+    });
     if output::format_of(&out)? != output::Format::Png {
         return Err(format!(
             "--tiles writes PNG parts (their place in the frame is a PNG text chunk), not --out {}",

@@ -75,7 +75,7 @@ enum Subject {
 }
 
 fn run(args: &Args) -> Result<(), String> {
-    farm::check_seed(args)?;
+    farm::check_flags(args)?;
     let subject = match &args.vox {
         Some(path) => Subject::Model(Box::new(
             VoxModel::load(path)

@@ -89,7 +89,18 @@ pub fn assemble(parts: &[(&Path, Part)], allow_partial: bool) -> Result<Stitched
     let (width, height, grid) = (one.frame_width, one.frame_height, one.grid);
     let mut owner: Vec<Option<&Path>> = vec![None; grid.count() as usize];
     for (path, part) in parts {
-        let tile = part.placement.tile as usize;
+        // What `read_part` checks, checked again for parts made by hand.
+        let p = &part.placement;
+        let rect = grid.tile(width, height, p.tile);
+        let area = rect.map(|r| r.width as usize * r.height as usize);
+        if rect != Some(p.rect) || area != Some(part.pixels.len()) {
+            return Err(format!(
+                "{}: its rectangle or pixels are not tile {} of {grid} over {width}x{height}",
+                path.display(),
+                p.tile
+            ));
+        }
+        let tile = p.tile as usize;
         if let Some(earlier) = owner[tile] {
             return Err(format!(
                 "duplicate tile {tile}: {} and {}",

@@ -341,6 +341,8 @@ fn bad_farm_arguments_exit_2_naming_the_range() {
         &[],
     );
     refused(&unseeded, &["--seed"]);
+    let unpaired = voxtrace(&["--size", "30", "--tile-index", "0", "--out", out], &[]);
+    refused(&unpaired, &["--tile-index needs --tiles"]);
 
     refused(&voxtrace(&["stitch", "--out", out], &[]), &["PART"]);
     refused(

@@ -204,6 +204,10 @@ fn assembly_refuses_parts_that_do_not_fit_and_names_the_problem() {
         "tile-0.png and tile-2.png are of different frames (0 against 3)"
     );
 
+    let mut short = parts.clone();
+    short[4].pixels.pop();
+    assert!(refuse(&short).starts_with("tile-4.png: its rectangle or pixels"));
+
     let mut coarse = parts.clone();
     coarse[9] = parts_of(Grid::new(2, 2).unwrap(), 64, 36, "seed=1").swap_remove(1);
     let err = refuse(&coarse);
