@@ -120,6 +120,12 @@ impl Placement {
             .split_once('x')
             .ok_or_else(|| format!("frame={frame} is not WxH"))?;
         let (frame_width, frame_height) = (number(w, "frame")?, number(h, "frame")?);
+        // The renderer's own limit on a frame's sides.
+        if !(1..=65535).contains(&frame_width) || !(1..=65535).contains(&frame_height) {
+            return Err(format!(
+                "frame={frame} is not a frame voxtrace renders (1 to 65535 a side)"
+            ));
+        }
         let grid = Grid::parse(field("grid")?)?;
         let tile = number(field("tile")?, "tile")?;
         let rect = field("rect")?;

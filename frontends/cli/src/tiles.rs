@@ -27,7 +27,8 @@ pub fn split(n: u32, parts: u32, index: u32) -> Range<u32> {
 /// (tile `i` is in row `i / columns`, column `i % columns`).
 ///
 /// # Guarantees
-/// `columns` and `rows` are at least 1 and their product fits in a `u32`.
+/// `columns` and `rows` are at least 1 and there are at most
+/// [`Grid::MAX_TILES`] tiles.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Grid {
     columns: u32,
@@ -35,11 +36,17 @@ pub struct Grid {
 }
 
 impl Grid {
+    /// The most tiles a grid has: far more tasks than any farm runs for one
+    /// frame, and few enough that a stitch's bookkeeping of what a part file
+    /// claims stays small.
+    pub const MAX_TILES: u32 = 1 << 16;
+
     /// A grid of `columns x rows` tiles; `None` if either is 0 or there
-    /// would be more than `u32::MAX` tiles.
+    /// would be more than [`Grid::MAX_TILES`] tiles.
     #[must_use]
     pub fn new(columns: u32, rows: u32) -> Option<Grid> {
-        let valid = columns > 0 && rows > 0 && columns.checked_mul(rows).is_some();
+        let count = u64::from(columns) * u64::from(rows);
+        let valid = columns > 0 && rows > 0 && count <= u64::from(Grid::MAX_TILES);
         valid.then_some(Grid { columns, rows })
     }
 
@@ -53,7 +60,8 @@ impl Grid {
         let number = |s: &str| s.trim().parse::<u32>().map_err(|_| bad());
         Grid::new(number(c)?, number(r)?).ok_or_else(|| {
             format!(
-                "'{text}' must have at least one column and one row, and at most 2^32 - 1 tiles"
+                "'{text}' must have at least one column and one row, and at most {} tiles",
+                Grid::MAX_TILES
             )
         })
     }
@@ -73,7 +81,7 @@ impl Grid {
     /// Tiles in the grid.
     #[must_use]
     pub fn count(self) -> u32 {
-        self.columns * self.rows // checked in `new`
+        self.columns * self.rows // at most MAX_TILES: checked in `new`
     }
 
     /// Checks that every tile of a `width x height` frame has a pixel.
@@ -219,7 +227,18 @@ mod tests {
     fn grids_parse_and_refuse_nonsense() {
         assert_eq!(Grid::parse("4x3"), Ok(Grid::new(4, 3).unwrap()));
         assert_eq!(Grid::parse("16X1").map(Grid::count), Ok(16));
-        for bad in ["4", "0x4", "4x0", "x", "4x4x4", "-1x2", "65536x65536", ""] {
+        assert_eq!(Grid::parse("256x256").map(Grid::count), Ok(Grid::MAX_TILES));
+        for bad in [
+            "4",
+            "0x4",
+            "4x0",
+            "x",
+            "4x4x4",
+            "-1x2",
+            "257x256",
+            "65536x65536",
+            "",
+        ] {
             let err = Grid::parse(bad).unwrap_err();
             assert!(err.contains(&format!("'{bad}'")), "{bad}: {err}");
         }

@@ -281,6 +281,11 @@ fn placements_are_checked_against_their_grid() {
         ),
         (good.replace("00000000000000ff", "ff"), "16 hex digits"),
         (good.replace("grid=3x2", "grid=11x2"), "does not fit"),
+        (good.replace("frame=10x5", "frame=70000x5"), "1 to 65535"),
+        (
+            good.replace("grid=3x2", "grid=300x300"),
+            "at most 65536 tiles",
+        ),
     ];
     for (text, expected) in bad {
         let err = Placement::parse(&text).unwrap_err();
