@@ -155,12 +155,17 @@ EOF
 chmod +x "$work/voxtrace-poisoned"
 touch "$work/poison-5"
 export VOXTRACE="$work/voxtrace-poisoned" OUT_DIR="$work/jobs/parts2" FRAME="$work/jobs/frame2.png"
-array=$(sbatch --parsable --array=0-15 --cpus-per-task=1 "$repo/examples/slurm/tiles.sbatch")
-# afterany here (the recipe uses afterok): the stitch must run to refuse.
+ids=$("$repo/examples/slurm/submit.sh" --array=0-15 --cpus-per-task=1)
+array=$(echo "$ids" | sed -n 1p)
+never=$(echo "$ids" | sed -n 2p)
+# afterany here (the recipe uses afterok): this stitch must run to refuse.
 refused=$(sbatch --parsable --dependency=afterany:"$array" --output=refused.out "$repo/examples/slurm/stitch.sbatch")
 wait_done "$array"
 wait_done "$refused"
+wait_done "$never"
 [ "$(state "${array}_5")" = "FAILED " ] || { echo "task 5: $(state "${array}_5")"; exit 1; }
+[ "$(state "$never")" = "CANCELLED " ] || { echo "the recipe's afterok stitch: $(state "$never")"; exit 1; }
+echo "task 5 failed; the recipe's afterok stitch was cancelled"
 [ "$(state "$refused")" = "FAILED " ] || { echo "the stitch did not refuse: $(state "$refused")"; exit 1; }
 grep -q '^error: missing 1 of the 16 tiles of the 4x4 grid (0 to 15): 5$' refused.out \
   || { echo "the stitch's refusal does not name tile 5:"; cat refused.out; exit 1; }
