@@ -10,6 +10,7 @@ SCENE_ARGS=${SCENE_ARGS:---size 250 --seed 7 --width 1920 --height 1080}
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 stat() { sed -n "s/^$1: //p" "$2"; }
+calc() { awk -v OFMT=%.3f "BEGIN { print $1 }"; } # float arithmetic without bc
 now() { date +%s%N; }
 
 # shellcheck disable=SC2086 # SCENE_ARGS is a list of flags
@@ -23,16 +24,16 @@ count=$(( ${TILES%x*} * ${TILES#*x} ))
 walls=0 builds=0 renders=0 encodes=0
 for ((i = 0; i < count; i++)); do
   t0=$(now); run --tiles "$TILES" --tile-index "$i" --out "$dir/tile-%t.png"; t1=$(now)
-  walls=$(echo "$walls + ($t1 - $t0) / 1000000" | bc -l)
-  builds=$(echo "$builds + $(stat build_ms "$dir/stats")" | bc -l)
-  renders=$(echo "$renders + $(stat render_ms "$dir/stats")" | bc -l)
-  encodes=$(echo "$encodes + $(stat encode_ms "$dir/stats")" | bc -l)
+  walls=$(calc "$walls + ($t1 - $t0) / 1000000")
+  builds=$(calc "$builds + $(stat build_ms "$dir/stats")")
+  renders=$(calc "$renders + $(stat render_ms "$dir/stats")")
+  encodes=$(calc "$encodes + $(stat encode_ms "$dir/stats")")
 done
 "$VOXTRACE" stitch "$dir"/tile-*.png --out "$dir/stitched.png"
 cmp "$dir/stitched.png" "$dir/full.png"
-per() { echo "($1) / $count" | bc -l; }
+per() { calc "($1) / $count"; }
 printf '%d tiles, per task: wall %.0f ms = build %.0f + render %.0f + encode %.0f + start and the rest %.0f ms\n' \
   "$count" "$(per "$walls")" "$(per "$builds")" "$(per "$renders")" "$(per "$encodes")" \
   "$(per "$walls - $builds - $renders - $encodes")"
 printf 'all tiles: render %.0f ms in sum, overhead (wall - render) %.0f ms in sum; the stitched frame is the whole frame'"'"'s file\n' \
-  "$renders" "$(echo "$walls - $renders" | bc -l)"
+  "$renders" "$(calc "$walls - $renders")"
