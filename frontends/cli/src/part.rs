@@ -259,7 +259,11 @@ pub fn read_part<R: BufRead + Seek>(reader: R) -> Result<Part, String> {
     let size = png
         .output_buffer_size()
         .ok_or("the image is too large to decode")?;
-    let mut bytes = vec![0; size];
+    let mut bytes = Vec::new();
+    bytes
+        .try_reserve_exact(size)
+        .map_err(|_| format!("out of memory: cannot decode a {width}x{height} tile"))?;
+    bytes.resize(size, 0);
     let frame = png
         .next_frame(&mut bytes)
         .map_err(|e| format!("corrupt image data: {e}"))?;
