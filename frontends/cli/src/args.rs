@@ -9,7 +9,14 @@ use voxtrace_cli::Backend;
 
 /// Render the seeded Perlin terrain of the voxtrace paper to a PNG.
 #[derive(Debug, Parser)]
-#[command(name = "voxtrace", version, about, args_override_self = true)]
+#[command(
+    name = "voxtrace",
+    version,
+    about,
+    args_override_self = true,
+    after_help = "Subcommand: voxtrace stitch PART... --out FILE assembles the tiles of \
+                  --tiles renders into the full frame (voxtrace stitch --help)."
+)]
 pub struct Args {
     /// Storage backend.
     #[arg(long, value_enum, default_value_t = Backend::Octree)]
@@ -102,6 +109,10 @@ pub struct Args {
     /// Print `key: value` statistics to stderr.
     #[arg(long)]
     pub stats: bool,
+
+    /// Render-farm tiles (`--tiles`, `--tile-index`).
+    #[command(flatten)]
+    pub farm: crate::farm::TileArgs,
 }
 
 fn parse_numbers<const N: usize, T: std::str::FromStr>(

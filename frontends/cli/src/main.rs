@@ -5,6 +5,7 @@
 //! problem.
 
 mod args;
+mod farm;
 mod output;
 mod progress;
 
@@ -23,22 +24,12 @@ use args::Args;
 use progress::Progress;
 
 fn main() -> ExitCode {
+    if let Some(code) = farm::subcommand() {
+        return code;
+    }
     let args = match Args::try_parse() {
         Ok(args) => args,
-        Err(e) => {
-            use clap::error::ErrorKind;
-            if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
-                let _ = e.print();
-                return ExitCode::SUCCESS;
-            }
-            // One line: clap's first line names the flag and the bad value.
-            let text = e.render().to_string();
-            eprintln!(
-                "{}",
-                text.lines().next().unwrap_or("error: invalid arguments")
-            );
-            return ExitCode::from(2);
-        }
+        Err(e) => return clap_failure(&e),
     };
     match run(&args) {
         Ok(()) => ExitCode::SUCCESS,
@@ -47,6 +38,22 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// Help and version go to stdout with exit 0; a parse error is one line
+/// (clap's first, which names the flag and the bad value) with exit 2.
+fn clap_failure(e: &clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+        let _ = e.print();
+        return ExitCode::SUCCESS;
+    }
+    let text = e.render().to_string();
+    eprintln!(
+        "{}",
+        text.lines().next().unwrap_or("error: invalid arguments")
+    );
+    ExitCode::from(2)
 }
 
 /// A seed from the clock and process id: different per run, printed so the
@@ -68,6 +75,7 @@ enum Subject {
 }
 
 fn run(args: &Args) -> Result<(), String> {
+    farm::check_flags(args)?;
     let subject = match &args.vox {
         Some(path) => Subject::Model(Box::new(
             VoxModel::load(path)
@@ -107,7 +115,13 @@ fn run(args: &Args) -> Result<(), String> {
         ..CameraSettings::default()
     })
     .map_err(|e| e.to_string())?;
-    let region = args.region.unwrap_or(Rect::full(&camera));
+    let options = render_options(args, bounds);
+    let tile = farm::select(args, &camera, &options)?;
+    let region = match &tile {
+        Some(tile) => tile.placement.rect,
+        None => args.region.unwrap_or(Rect::full(&camera)),
+    };
+    let out = tile.as_ref().map_or(&args.out, |tile| &tile.out);
     region.validate(&camera).map_err(|_| {
         format!(
             "--region {},{},{},{} does not fit in the {}x{} frame",
@@ -115,24 +129,28 @@ fn run(args: &Args) -> Result<(), String> {
         )
     })?;
 
-    let options = render_options(args, bounds);
     let mut notes = ignored_effects(&options);
     if args.vox.is_some() && args.seed.is_some() {
         notes.push("--seed shapes the terrain; a --vox scene does not use it".to_string());
     }
 
     // Check the output first: a bad path fails now, not after the render.
-    let format = output::format_of(&args.out)?;
-    let file = File::create(&args.out)
-        .map_err(|e| format!("cannot write --out {}: {e}", args.out.display()))?;
-    let result = render_to(
-        args, &subject, bounds, &options, &camera, region, file, format,
-    );
+    let format = output::format_of(out)?;
+    let file =
+        File::create(out).map_err(|e| format!("cannot write --out {}: {e}", out.display()))?;
+    let write = |pixels: &[u32]| {
+        match &tile {
+            Some(tile) => farm::write_tile(file, tile, pixels),
+            None => output::write(file, format, region.width, region.height, pixels),
+        }
+        .map_err(|e| format!("cannot write --out {}: {e}", out.display()))
+    };
+    let result = render_to(args, &subject, bounds, &options, &camera, region, write);
     match result {
         // Notes only after a success: an error stays the one line on stderr.
         Ok(()) => notes.iter().for_each(|note| eprintln!("note: {note}")),
         Err(_) => {
-            let _ = std::fs::remove_file(&args.out);
+            let _ = std::fs::remove_file(out);
         }
     }
     result
@@ -194,8 +212,7 @@ fn ignored_effects(asked: &RenderOptions) -> Vec<String> {
 }
 
 /// Builds the scene and renders it with the thread count of `--threads`,
-/// then writes the PNG and, with `--stats`, the figures.
-#[allow(clippy::too_many_arguments)] // one call site; a struct would only rename them
+/// then hands the pixels to `write` and, with `--stats`, prints the figures.
 fn render_to(
     args: &Args,
     subject: &Subject,
@@ -203,8 +220,7 @@ fn render_to(
     options: &RenderOptions,
     camera: &Camera,
     region: Rect,
-    file: File,
-    format: output::Format,
+    write: impl FnOnce(&[u32]) -> Result<(), String>,
 ) -> Result<(), String> {
     let threaded = args.threads != Some(1);
     let (built, build, rendered) = on_threads(args.threads, || {
@@ -226,8 +242,7 @@ fn render_to(
     })?;
 
     let encode_started = Instant::now();
-    output::write(file, format, region.width, region.height, &rendered.pixels)
-        .map_err(|e| format!("cannot write --out {}: {e}", args.out.display()))?;
+    write(&rendered.pixels)?;
     let encode = encode_started.elapsed();
 
     if args.stats {

@@ -1,0 +1,214 @@
+//! The render-farm side of the binary: `--tiles CxR --tile-index I` picks
+//! one tile of the frame and writes it as a part that knows where it
+//! belongs, and `voxtrace stitch` puts the parts back together.
+
+use std::ffi::OsString;
+use std::fs::File;
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::Parser;
+use voxtrace::{Camera, RenderOptions};
+use voxtrace_cli::part::{fnv1a64, settings_text, write_part, Placement};
+use voxtrace_cli::stitch::{list, stitch, write_atomically};
+use voxtrace_cli::tiles::{tile_name, Grid, TaskIndex};
+
+use crate::args::Args;
+use crate::output;
+
+/// The flags that make a render one task of a job array.
+#[derive(Debug, Clone, clap::Args)]
+pub struct TileArgs {
+    /// Cut the frame into a grid of COLUMNS x ROWS tiles (for example 4x4)
+    /// and render only the tile --tile-index picks; the PNG then carries
+    /// its place in the frame for `voxtrace stitch`. `%t` in --out becomes
+    /// the tile number.
+    #[arg(long, value_name = "CxR", value_parser = Grid::parse, conflicts_with = "region")]
+    pub tiles: Option<Grid>,
+
+    /// The tile to render with --tiles, row-major from 0, or env:VAR to read
+    /// it from an environment variable (env:SLURM_ARRAY_TASK_ID).
+    #[arg(long, value_name = "I|env:VAR", value_parser = TaskIndex::parse)]
+    pub tile_index: Option<TaskIndex>,
+}
+
+/// One tile to render: where it belongs, what decides its pixels, and
+/// where it goes.
+pub struct TileJob {
+    /// Its place in the frame.
+    pub placement: Placement,
+    /// The settings text its hash is taken of.
+    pub settings: String,
+    /// `--out` with `%t` replaced.
+    pub out: PathBuf,
+}
+
+/// Checks the farm flags before anything else runs (a random seed is
+/// drawn and printed): `--tiles` and `--tile-index` go together, and tiles
+/// of the terrain need `--seed`, since every task would draw its own.
+///
+/// # Errors
+/// One line naming the fix.
+pub fn check_flags(args: &Args) -> Result<(), String> {
+    match (args.farm.tiles, &args.farm.tile_index) {
+        (None, Some(_)) => Err("--tile-index needs --tiles CxR".to_string()),
+        (Some(grid), None) => Err(format!(
+            "--tiles {grid} needs --tile-index I (0 to {}) or env:VAR",
+            grid.count() - 1
+        )),
+        (Some(grid), Some(_)) if args.vox.is_none() && args.seed.is_none() => Err(format!(
+            "--tiles {grid} needs --seed N: every task would draw its own random terrain"
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// The tile `args` ask for, if any.
+///
+/// # Errors
+/// One line: what [`check_flags`] refuses, an index out of range or an
+/// unset variable (naming the range), a grid finer than the frame, a
+/// `--vox` file that cannot be read, or an `--out` that is not PNG.
+pub fn select(
+    args: &Args,
+    camera: &Camera,
+    options: &RenderOptions,
+) -> Result<Option<TileJob>, String> {
+    check_flags(args)?;
+    let (Some(grid), Some(index)) = (args.farm.tiles, &args.farm.tile_index) else {
+        return Ok(None);
+    };
+    let (width, height) = (camera.width(), camera.height());
+    grid.fits(width, height)?;
+    let what = format!("the {grid} grid's tiles");
+    let tile = index.resolve("--tile-index", grid.count(), &what, |var| {
+        std::env::var(var).ok()
+    })?;
+    let rect = grid
+        .tile(width, height, tile)
+        .ok_or("the tile index is out of range")?; // resolve checked it
+
+    let subject = match (&args.vox, args.seed) {
+        (Some(path), _) => {
+            let bytes = std::fs::read(path)
+                .map_err(|e| format!("cannot load --vox {}: {e}", path.display()))?;
+            format!("vox fnv1a64={:016x}", fnv1a64(&bytes))
+        }
+        (None, Some(seed)) => format!("terrain seed={seed} size={}", args.size),
+        (None, None) => return Err(format!("--tiles {grid} needs --seed N")),
+    };
+    let settings = settings_text(&subject, args.backend.name(), camera, options);
+    // A path that is not UTF-8 has no `%t` this build could replace.
+    let out = args.out.to_str().map_or(args.out.clone(), |pattern| {
+        PathBuf::from(tile_name(pattern, tile, grid.count()))
+    });
+    if output::format_of(&out)? != output::Format::Png {
+        return Err(format!(
+            "--tiles writes PNG parts (their place in the frame is a PNG text chunk), not --out {}",
+            out.display()
+        ));
+    }
+    let placement = Placement {
+        frame_width: width,
+        frame_height: height,
+        grid,
+        tile,
+        rect,
+        frame_number: 0, // a still; the camera's --frames will set it
+        hash: fnv1a64(settings.as_bytes()),
+    };
+    Ok(Some(TileJob {
+        placement,
+        settings,
+        out,
+    }))
+}
+
+/// Writes a rendered tile as a part PNG into `file`.
+///
+/// # Errors
+/// The encoder's message.
+pub fn write_tile(file: File, job: &TileJob, pixels: &[u32]) -> Result<(), String> {
+    write_part(BufWriter::new(file), &job.placement, &job.settings, pixels)
+}
+
+/// `voxtrace stitch PART... --out FILE [--allow-partial]`.
+#[derive(Debug, Parser)]
+#[command(
+    name = "voxtrace stitch",
+    version,
+    about = "Assemble the tiles of one frame (rendered with --tiles) into the full PNG, \
+             the same file a single render writes; refuses parts that do not fit together."
+)]
+struct StitchArgs {
+    /// The part PNGs, in any order.
+    // Both required, but checked by hand: clap would name them on a second
+    // line, and an error is one line.
+    #[arg(value_name = "PART")]
+    parts: Vec<PathBuf>,
+
+    /// The stitched PNG; written whole or not at all.
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+
+    /// Fill missing tiles with a checkerboard (and list them) instead of
+    /// refusing: for previews.
+    #[arg(long)]
+    allow_partial: bool,
+}
+
+/// Runs `voxtrace stitch` when it is the first argument; `None` leaves the
+/// arguments to the renderer.
+pub fn subcommand() -> Option<ExitCode> {
+    let mut argv = std::env::args_os();
+    let program = argv.next()?;
+    let rest: Vec<OsString> = argv.collect();
+    if rest.first().is_none_or(|first| first != "stitch") {
+        return None;
+    }
+    let parsed = StitchArgs::try_parse_from(
+        std::iter::once(OsString::from(format!(
+            "{} stitch",
+            Path::new(&program).display()
+        )))
+        .chain(rest.into_iter().skip(1)),
+    );
+    let args = match parsed {
+        Ok(args) => args,
+        Err(e) => return Some(crate::clap_failure(&e)),
+    };
+    Some(match run_stitch(&args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(2)
+        }
+    })
+}
+
+fn run_stitch(args: &StitchArgs) -> Result<(), String> {
+    let out = args
+        .out
+        .as_ref()
+        .ok_or("stitch needs --out FILE (voxtrace stitch PART... --out FILE)")?;
+    if args.parts.is_empty() {
+        return Err("stitch needs at least one PART (voxtrace stitch PART... --out FILE)".into());
+    }
+    if output::format_of(out)? != output::Format::Png {
+        return Err(format!("stitch writes PNG, not --out {}", out.display()));
+    }
+    let frame = stitch(&args.parts, args.allow_partial)?;
+    let mut png = Vec::new();
+    voxtrace::encode_png(&mut png, frame.width, frame.height, &frame.pixels)
+        .map_err(|e| format!("cannot encode the stitched frame: {e}"))?;
+    write_atomically(out, &png)?;
+    if !frame.missing.is_empty() {
+        eprintln!(
+            "note: missing tiles of the {} grid drawn as a checkerboard: {}",
+            frame.grid,
+            list(&frame.missing)
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,206 @@
+//! `voxtrace stitch`: the parts of one frame assembled into the full frame,
+//! or a refusal that names the first problem found.
+//!
+//! The stitched pixels are the frame's pixels (a tile is the same pixels as
+//! the full frame's, byte for byte), and the stitched file is encoded the
+//! way a plain render encodes it, without the parts' text chunks, so that
+//! it is the same file as a single-machine render.
+
+use std::fs::File;
+use std::io::{BufReader, Write};
+use std::path::{Path, PathBuf};
+
+use crate::part::{read_part, Part};
+use crate::tiles::Grid;
+
+/// A stitched frame.
+#[derive(Debug)]
+pub struct Stitched {
+    /// The frame's width.
+    pub width: u32,
+    /// The frame's height.
+    pub height: u32,
+    /// `width * height` packed pixels.
+    pub pixels: Vec<u32>,
+    /// The tiles that were missing and are a checkerboard instead (only
+    /// with `allow_partial`).
+    pub missing: Vec<u32>,
+    /// The grid the parts were cut by.
+    pub grid: Grid,
+}
+
+/// Reads the part files at `paths` and assembles their frame.
+///
+/// # Errors
+/// One line naming the problem: a file that cannot be read or is not a
+/// voxtrace tile (or is corrupt), parts of different settings, frames or
+/// grids, a tile given twice, or, unless `allow_partial`, missing tiles.
+pub fn stitch(paths: &[PathBuf], allow_partial: bool) -> Result<Stitched, String> {
+    let mut parts = Vec::with_capacity(paths.len());
+    for path in paths {
+        let file = File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        let part =
+            read_part(BufReader::new(file)).map_err(|e| format!("{}: {e}", path.display()))?;
+        parts.push((path.as_path(), part));
+    }
+    assemble(&parts, allow_partial)
+}
+
+/// Assembles parts already read, each with the path it came from (for
+/// messages).
+///
+/// # Errors
+/// As [`stitch`], except reading.
+pub fn assemble(parts: &[(&Path, Part)], allow_partial: bool) -> Result<Stitched, String> {
+    let (first_path, first) = parts.first().ok_or("no parts given")?;
+    let one = &first.placement;
+    for (path, part) in &parts[1..] {
+        let p = &part.placement;
+        let names = || format!("{} and {}", first_path.display(), path.display());
+        if p.hash != one.hash {
+            return Err(format!(
+                "{} have different settings (hash {:016x} against {:016x}; first difference: {})",
+                names(),
+                one.hash,
+                p.hash,
+                first_difference(&first.settings, &part.settings)
+            ));
+        }
+        if p.frame_number != one.frame_number {
+            return Err(format!(
+                "{} are of different frames ({} against {})",
+                names(),
+                one.frame_number,
+                p.frame_number
+            ));
+        }
+        if p.grid != one.grid
+            || (p.frame_width, p.frame_height) != (one.frame_width, one.frame_height)
+        {
+            return Err(format!(
+                "{} overlap: tiles of different grids ({} against {})",
+                names(),
+                one.grid,
+                p.grid
+            ));
+        }
+    }
+
+    let (width, height, grid) = (one.frame_width, one.frame_height, one.grid);
+    let mut owner: Vec<Option<&Path>> = vec![None; grid.count() as usize];
+    for (path, part) in parts {
+        // What `read_part` checks, checked again for parts made by hand.
+        let p = &part.placement;
+        let rect = grid.tile(width, height, p.tile);
+        let area = rect.map(|r| r.width as usize * r.height as usize);
+        if rect != Some(p.rect) || area != Some(part.pixels.len()) {
+            return Err(format!(
+                "{}: its rectangle or pixels are not tile {} of {grid} over {width}x{height}",
+                path.display(),
+                p.tile
+            ));
+        }
+        let tile = p.tile as usize;
+        if let Some(earlier) = owner[tile] {
+            return Err(format!(
+                "duplicate tile {tile}: {} and {}",
+                earlier.display(),
+                path.display()
+            ));
+        }
+        owner[tile] = Some(path);
+    }
+    let missing: Vec<u32> = (0..grid.count())
+        .filter(|&t| owner[t as usize].is_none())
+        .collect();
+    if !missing.is_empty() && !allow_partial {
+        return Err(format!(
+            "missing {} of the {} tiles of the {grid} grid (0 to {}): {}",
+            missing.len(),
+            grid.count(),
+            grid.count() - 1,
+            list(&missing)
+        ));
+    }
+
+    let area = width as usize * height as usize;
+    let mut pixels = Vec::new();
+    pixels
+        .try_reserve_exact(area)
+        .map_err(|_| format!("out of memory: cannot allocate a {width}x{height} image"))?;
+    pixels.resize(area, 0);
+    let mut paste = |tile: u32, pixel: &dyn Fn(u32, u32, usize) -> u32| {
+        let rect = grid.tile(width, height, tile).expect("a tile of the grid");
+        for row in 0..rect.height {
+            let start = (rect.y + row) as usize * width as usize + rect.x as usize;
+            let line = &mut pixels[start..start + rect.width as usize];
+            for (column, out) in (0..rect.width).zip(line) {
+                let at = (row * rect.width + column) as usize;
+                *out = pixel(rect.x + column, rect.y + row, at);
+            }
+        }
+    };
+    for (_, part) in parts {
+        paste(part.placement.tile, &|_, _, at| part.pixels[at]);
+    }
+    for &tile in &missing {
+        paste(tile, &checker);
+    }
+    Ok(Stitched {
+        width,
+        height,
+        pixels,
+        missing,
+        grid,
+    })
+}
+
+/// The preview's stand-in for a missing tile: 8-pixel squares of two grays,
+/// laid in frame coordinates so that neighbouring missing tiles join up.
+fn checker(x: u32, y: u32, _: usize) -> u32 {
+    let light = (x / 8 + y / 8) % 2 == 0;
+    let v = if light { 0xc0 } else { 0x80 };
+    u32::from_ne_bytes([v, v, v, 255])
+}
+
+/// `3, 7, 12`.
+#[must_use]
+pub fn list(tiles: &[u32]) -> String {
+    let words: Vec<String> = tiles.iter().map(u32::to_string).collect();
+    words.join(", ")
+}
+
+/// The first word where two settings texts differ, for a mismatch message.
+fn first_difference(a: &str, b: &str) -> String {
+    let mut words = a.split(' ').zip(b.split(' '));
+    match words.find(|(x, y)| x != y) {
+        Some((x, y)) => format!("'{x}' against '{y}'"),
+        None => "one text is longer".to_string(),
+    }
+}
+
+/// Writes `bytes` to `path` so that `path` is either its old file or the
+/// whole new one: a temporary file in the same directory, synced, then
+/// renamed over it. The temporary file is removed if anything fails.
+///
+/// # Errors
+/// A message naming `path` and the failure.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    let fail = |e: std::io::Error| format!("cannot write --out {}: {e}", path.display());
+    let name = path
+        .file_name()
+        .ok_or_else(|| format!("cannot write --out {}: not a file name", path.display()))?;
+    let mut temp_name = std::ffi::OsString::from(".");
+    temp_name.push(name);
+    temp_name.push(format!(".{}.tmp", std::process::id()));
+    let temp = path.with_file_name(temp_name);
+    let written = File::create(&temp).and_then(|mut file| {
+        file.write_all(bytes)?;
+        file.sync_all()
+    });
+    let result = written.and_then(|()| std::fs::rename(&temp, path));
+    if result.is_err() {
+        let _ = std::fs::remove_file(&temp);
+    }
+    result.map_err(fail)
+}
