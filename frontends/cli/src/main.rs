@@ -345,9 +345,10 @@ impl Job<'_> {
         let args = self.args;
         let threaded = args.threads != Some(1);
         let region = self.region;
-        let inside = cameras
-            .iter()
-            .any(|(_, s, _)| self.subject.material(s.lookfrom.floor().as_ivec3()) != 0);
+        let inside = cameras.iter().any(|(_, s, _)| {
+            let cell = s.lookfrom.floor().as_ivec3();
+            self.bounds.contains(cell) && self.subject.material(cell) != 0
+        });
         if inside {
             notes.push(
                 "the camera starts inside a solid voxel: its rays see only that voxel (move it with --position)"

@@ -8,6 +8,8 @@
 use std::time::{Duration, Instant};
 
 use clap::ValueEnum;
+
+use crate::units::human_bytes;
 use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{
     render_parallel_with_progress, render_region, Camera, DenseScene, Error, Framebuffer, IAabb,
@@ -124,8 +126,9 @@ impl BuiltScene {
                             .map(|&s| u128::from(s.unsigned_abs()))
                             .product();
                         format!(
-                            "the dense array for this scene needs {bytes} bytes (one per voxel), \
-                             more than can be allocated; try --backend octree"
+                            "the dense array for this scene needs {} (one per voxel), \
+                             more than can be allocated; try --backend octree",
+                            human_bytes(bytes)
                         )
                     }
                     e => describe(e),
