@@ -397,5 +397,5 @@ fn a_transparent_background_is_alpha_0_exactly_where_primary_rays_miss() {
         alphas.iter().all(|a| [0, 64, 128, 191, 255].contains(a)),
         "{alphas:?}"
     );
-    assert!(alphas.iter().any(|&a| a == 0) && alphas.iter().any(|&a| a == 255));
+    assert!(alphas.contains(&0) && alphas.contains(&255));
 }
