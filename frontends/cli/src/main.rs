@@ -190,9 +190,11 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     match &result {
         // Notes only after a success: an error stays the one line on stderr.
         Ok(()) => notes.iter().for_each(|note| eprintln!("note: {note}")),
+        // The first file was created up front: gone again if nothing came
+        // of it (a file that failed half-written is removed where it failed).
         Err(_) if !to_stdout => {
-            for path in &paths {
-                let _ = std::fs::remove_file(path);
+            if std::fs::metadata(&paths[0]).is_ok_and(|m| m.len() == 0) {
+                let _ = std::fs::remove_file(&paths[0]);
             }
         }
         Err(_) => {}
@@ -384,21 +386,30 @@ impl Job<'_> {
                     }
                 };
                 let started = Instant::now();
-                let out: Box<dyn Write> = match first.take() {
-                    Some(file) => Box::new(file),
-                    None if output::is_stdout(path) => Box::new(std::io::stdout().lock()),
-                    None => Box::new(create(path)?),
-                };
                 let alpha = self.options.background == Background::Transparent;
-                output::write(
-                    out,
-                    self.format,
-                    region.width,
-                    region.height,
-                    &rendered.pixels,
-                    alpha,
-                )
-                .map_err(|e| format!("cannot write --out {}: {e}", path.display()))?;
+                let written = match first.take() {
+                    Some(file) => Ok(Box::new(file) as Box<dyn Write>),
+                    None if output::is_stdout(path) => Ok(Box::new(std::io::stdout().lock()) as _),
+                    None => create(path).map(|f| Box::new(f) as _),
+                }
+                .and_then(|out| {
+                    output::write(
+                        out,
+                        self.format,
+                        region.width,
+                        region.height,
+                        &rendered.pixels,
+                        alpha,
+                    )
+                    .map_err(|e| format!("cannot write --out {}: {e}", path.display()))
+                });
+                if let Err(e) = written {
+                    progress.finish();
+                    if !output::is_stdout(path) {
+                        let _ = std::fs::remove_file(path);
+                    }
+                    return Err(e);
+                }
                 totals.0 += rendered.rays;
                 totals.1 += rendered.elapsed;
                 totals.2 += started.elapsed();

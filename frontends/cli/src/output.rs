@@ -97,7 +97,9 @@ pub fn has_alpha(format: Format) -> bool {
 
 /// Writes `width x height` packed pixels to `out` in `format`; `alpha`
 /// keeps their alpha channel where the format has one (else RGB, as
-/// opaque renders have always been written).
+/// opaque renders have always been written). PNG always keeps the
+/// pixels' alpha, 255 in opaque renders.
+#[cfg_attr(not(feature = "image"), allow(unused_variables))]
 pub fn write(
     out: impl Write,
     format: Format,
