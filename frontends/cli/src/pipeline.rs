@@ -109,7 +109,14 @@ impl BuiltScene {
         threaded: bool,
     ) -> Result<(BuiltScene, Duration), String> {
         let started = Instant::now();
-        let describe = |e: Error| format!("cannot build the {} scene: {e}", backend.name());
+        let describe = |e: Error| match e {
+            Error::OutOfMemory { bytes } => format!(
+                "cannot build the {} scene: out of memory: could not allocate {}",
+                backend.name(),
+                human_bytes(bytes as u128)
+            ),
+            e => format!("cannot build the {} scene: {e}", backend.name()),
+        };
         let scene = match backend {
             Backend::Dense => {
                 let built = if threaded {
