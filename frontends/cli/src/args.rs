@@ -10,7 +10,8 @@ use voxtrace_cli::{parse_frame_range, Backend, FrameRange};
 use crate::output::FormatArg;
 use crate::view::{parse_background, parse_orbit, BackgroundArg, OrbitArg, ProjectionArg, ViewArg};
 
-/// Render the seeded Perlin terrain of the voxtrace paper to a PNG.
+/// Render the seeded Perlin terrain of the voxtrace paper, or a MagicaVoxel
+/// .vox scene, to an image (PNG, BMP, TGA or PPM).
 #[derive(Debug, Parser)]
 #[command(name = "voxtrace", version, about, args_override_self = true)]
 pub struct Args {

@@ -1,4 +1,4 @@
-//! `voxtrace`: renders the seeded terrain to a PNG.
+//! `voxtrace`: renders the seeded terrain, or a `.vox` scene, to an image.
 //!
 //! Exit codes: 0 on success, 2 on bad arguments, unusable input or output, or
 //! a scene that does not fit in memory, with one line on stderr naming the
