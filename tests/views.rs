@@ -163,6 +163,15 @@ fn looking_down_is_a_map_and_looking_up_its_mirror() {
         };
         assert!(Camera::new(strict).is_err());
     }
+    // An explicit up that is not along the view turns the image: top +x.
+    let turned = Camera::new(CameraSettings {
+        cam_up: Vec3::X,
+        up_fallback: false,
+        ..settings(64, 48, Vec3::new(0.0, 150.0, 0.0), Vec3::ZERO)
+    })
+    .unwrap();
+    let top = turned.get_ray(32, 0).dir() - turned.get_ray(32, 24).dir();
+    assert!(top.x > 0.0 && top.z.abs() < 0.01 * top.x, "top {top}");
 }
 
 proptest! {
