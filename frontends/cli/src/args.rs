@@ -99,7 +99,7 @@ pub struct Args {
 
     /// Output image path; the extension picks the format (png, bmp, tga,
     /// ppm; no extension: png), `-` writes to standard output.
-    #[arg(long, default_value = "render.png", allow_hyphen_values = true)]
+    #[arg(long, default_value = "render.png")]
     pub out: PathBuf,
 
     /// Output format, whatever the --out extension says (for --out -).
