@@ -12,6 +12,16 @@ pub(crate) fn tan32(x: f32) -> f32 {
 }
 
 #[inline]
+pub(crate) fn sin32(x: f32) -> f32 {
+    libm::sinf(x)
+}
+
+#[inline]
+pub(crate) fn cos32(x: f32) -> f32 {
+    libm::cosf(x)
+}
+
+#[inline]
 pub(crate) fn floor64(x: f64) -> f64 {
     libm::floor(x)
 }

@@ -14,7 +14,9 @@ use common::reference::{as_ref_hit, first_hit_among};
 use common::sources::{solids, speckle};
 use proptest::prelude::*;
 use voxtrace::glam::Vec3;
-use voxtrace::{Camera, CameraSettings, IAabb, OctreeScene, Scene, VoxelGenerator, VoxelSource};
+use voxtrace::{
+    Camera, CameraSettings, IAabb, OctreeScene, Projection, Scene, VoxelGenerator, VoxelSource,
+};
 
 /// Checks every pixel of the `tile_w x tile_h` tile at `(tx, ty)`.
 fn check_tile<S: VoxelSource>(
@@ -118,6 +120,41 @@ proptest! {
         let Some(camera) = camera(24, 16, lookfrom, Vec3::new(0.0, 44.0, 0.0), fov) else { return Ok(()) };
         let (tile_w, tile_h) = (tile.0.min(24), tile.1.min(16));
         check_tile(&source, bounds, &camera, (0, 0, tile_w, tile_h))?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// Orthographic cameras (no shared apex: their tiles start at 0) and
+    /// perspective cameras straight above or below their target (the up
+    /// fallback's basis) keep every tile's start conservative.
+    #[test]
+    fn clear_distance_is_conservative_for_orthographic_and_vertical_cameras(
+        seed in any::<u64>(),
+        percent in 1u64..40,
+        from in vec3(-30.0..30.0),
+        at in vec3(-6.0..6.0),
+        height in 1.0f32..40.0,
+        ortho in any::<bool>(),
+        tile in (1u32..9, 1u32..9),
+        origin in (0u32..24, 0u32..16),
+    ) {
+        // Perspective cameras straight above or below the target.
+        let from = if ortho { from } else { Vec3::new(at.x, from.y, at.z) };
+        let Some(camera) = Camera::new(CameraSettings {
+            width: 32,
+            height: 24,
+            lookfrom: from,
+            lookat: at,
+            projection: if ortho { Projection::Orthographic { height } } else { Projection::Perspective },
+            ..CameraSettings::default()
+        }).ok() else { return Ok(()) };
+        if ortho {
+            prop_assert!(camera.tile_frustum(origin.0, origin.1, origin.0 + 1, origin.1 + 1).is_none());
+        }
+        let (tile_w, tile_h) = (tile.0.min(32 - origin.0), tile.1.min(24 - origin.1));
+        check_tile(&speckle(seed, percent), IAabb::centered(10), &camera, (origin.0, origin.1, tile_w, tile_h))?;
     }
 }
 

@@ -74,8 +74,11 @@ fn degenerate_settings_are_errors_not_nan_rays() {
             cam_up: Vec3::ZERO,
             ..settings()
         },
+        // An up vector along the view, asked for explicitly (the default
+        // falls back to a map's up instead: tests/views.rs).
         CameraSettings {
             cam_up: settings().lookat - settings().lookfrom,
+            up_fallback: false,
             ..settings()
         },
         CameraSettings {

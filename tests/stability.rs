@@ -462,6 +462,7 @@ fn stability_degenerate_cameras_and_extreme_fields_of_view() {
         },
         CameraSettings {
             cam_up: base.lookat - base.lookfrom,
+            up_fallback: false,
             ..base
         },
         CameraSettings {

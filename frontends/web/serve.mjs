@@ -1,5 +1,7 @@
 // A tiny static server for the page: index.html and main.js from this
-// folder, voxtrace_web.wasm from cargo's target folder.
+// folder, voxtrace_web.wasm from cargo's target folder ($CARGO_TARGET_DIR
+// when set, as cargo itself resolves it: relative to the current folder;
+// else target/ at the repository's root).
 // `node frontends/web/serve.mjs [port]`, then open http://localhost:8080/.
 
 import { createServer } from "node:http";
@@ -9,12 +11,15 @@ import path from "node:path";
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const root = path.resolve(here, "../..");
+const targetDir = process.env.CARGO_TARGET_DIR
+  ? path.resolve(process.env.CARGO_TARGET_DIR)
+  : path.join(root, "target");
 const files = {
   "/": [path.join(here, "index.html"), "text/html"],
   "/index.html": [path.join(here, "index.html"), "text/html"],
   "/main.js": [path.join(here, "main.js"), "text/javascript"],
   "/voxtrace_web.wasm": [
-    path.join(root, "target/wasm32-unknown-unknown/release/voxtrace_web.wasm"),
+    path.join(targetDir, "wasm32-unknown-unknown/release/voxtrace_web.wasm"),
     "application/wasm",
   ],
 };
@@ -30,10 +35,15 @@ export function serve(port = 8080) {
       const body = await readFile(entry[0]);
       res.writeHead(200, { "content-type": entry[1] }).end(body);
     } catch (e) {
-      res.writeHead(500).end(`${entry[0]}: ${e.message}` +
-        (entry[1] === "application/wasm"
-          ? " (build it: cargo build --release -p voxtrace-web --target wasm32-unknown-unknown)"
-          : ""));
+      // A file that is not there is a 404, and for the module says how to
+      // make it; anything else is the server's own failure.
+      const missing = e.code === "ENOENT";
+      const hint = missing && entry[1] === "application/wasm"
+        ? " (not built yet: rustup target add wasm32-unknown-unknown, then" +
+          " cargo build --release -p voxtrace-web --target wasm32-unknown-unknown;" +
+          " set CARGO_TARGET_DIR if cargo builds elsewhere)"
+        : "";
+      res.writeHead(missing ? 404 : 500).end(`${entry[0]}: ${e.message}${hint}`);
     }
   });
   return new Promise((resolve) => server.listen(port, "127.0.0.1", () => resolve(server)));

@@ -7,7 +7,8 @@ use glam::Vec3;
 use crate::error::Error;
 use crate::frustum::Frustum;
 use crate::geom::Ray;
-use crate::math::{sqrt32, tan32};
+use crate::math::tan32;
+use crate::render::view::{basis, unit, Projection};
 
 /// The seven camera parameters of the seed paper.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -22,8 +23,17 @@ pub struct CameraSettings {
     pub lookfrom: Vec3,
     /// The point the camera looks at.
     pub lookat: Vec3,
-    /// The scene's "up" direction; must not be parallel to the view.
+    /// The scene's "up" direction: the image's top leans toward it. When it
+    /// is parallel to the view, `up_fallback` decides.
     pub cam_up: Vec3,
+    /// What a view along `cam_up` does: `true` (the default) uses `-z` as
+    /// the up direction when looking down (a map: the image's top toward
+    /// `-z`) and `+z` when looking up (its mirror image), `+y` for a view
+    /// along z; `false` refuses the camera, for a caller whose `cam_up` was
+    /// asked for explicitly.
+    pub up_fallback: bool,
+    /// Perspective (the default) or orthographic.
+    pub projection: Projection,
     /// Distance from the camera to the image plane. With a pinhole it only
     /// scales the viewport, so images depend on it only through rounding
     /// (which grows as it shrinks: see `Camera::tile_frustum`).
@@ -44,6 +54,8 @@ impl Default for CameraSettings {
             lookfrom: Vec3::splat(90.0),
             lookat: Vec3::ZERO,
             cam_up: Vec3::Y,
+            up_fallback: true,
+            projection: Projection::Perspective,
             focus_dist: 1.0,
         }
     }
@@ -91,10 +103,16 @@ pub struct Camera {
     delta_v: Vec3,
     forward: Ray,
     spread: f32,
+    /// Orthographic: every ray has the view direction `forward.dir()` and
+    /// starts at its image-plane point.
+    orthographic: bool,
     /// How far (in radians) a computed ray may stray from the exact ray
     /// through its image-plane point: see `ray_error`.
     ray_error: f32,
 }
+
+/// Why a camera far out fails: not its field of view.
+const FAR: &str = "position too far from the origin: f32 cannot tell its pixels apart there";
 
 fn invalid(reason: &'static str) -> Error {
     Error::InvalidCamera { reason }
@@ -105,7 +123,9 @@ impl Camera {
     ///
     /// Fails with [`Error::InvalidCamera`] for a zero image size, a field of
     /// view outside `(0, 180)`, non-finite vectors, `lookfrom == lookat`,
-    /// `cam_up` zero or parallel to the view, or a non-positive focus distance.
+    /// `cam_up` zero (or parallel to the view without `up_fallback`), a
+    /// non-positive focus distance or orthographic height, or a position so
+    /// far from the origin that `f32` cannot tell its pixels apart.
     pub fn new(s: CameraSettings) -> Result<Self, Error> {
         if s.width == 0 || s.height == 0 {
             return Err(invalid("width and height must be at least 1"));
@@ -123,14 +143,12 @@ impl Camera {
         }
         let view = s.lookat - s.lookfrom;
         let w = unit(view).ok_or(invalid("position and target coincide"))?;
-        let up = unit(s.cam_up).ok_or(invalid("up vector is zero"))?;
-        // |w x up| = sin(angle): below ~1e-4 rad the basis is unreliable.
-        let u = w.cross(up);
-        if u.length_squared() < 1e-8 {
-            return Err(invalid("up vector is parallel to the view direction"));
+        let (u, v) = basis(w, s.cam_up, s.up_fallback)?;
+        let forward =
+            Ray::new(s.lookfrom, w).map_err(|_| invalid("view direction is degenerate"))?;
+        if let Projection::Orthographic { height } = s.projection {
+            return Self::orthographic(s, height, (u, v), forward);
         }
-        let u = unit(u).ok_or(invalid("up vector is parallel to the view direction"))?;
-        let v = u.cross(w);
 
         let theta = s.vertical_fov.to_radians();
         let viewport_height = 2.0 * tan32(theta / 2.0) * s.focus_dist;
@@ -143,8 +161,6 @@ impl Camera {
         let upper_left = s.lookfrom + w * s.focus_dist - viewport_u / 2.0 - viewport_v / 2.0;
         let pixel00 = upper_left + (delta_u + delta_v) * 0.5;
 
-        let forward =
-            Ray::new(s.lookfrom, w).map_err(|_| invalid("view direction is degenerate"))?;
         let camera = Camera {
             width: s.width,
             height: s.height,
@@ -155,16 +171,83 @@ impl Camera {
             forward,
             // The angle one pixel row spans at the view's center.
             spread: delta_v.length() / s.focus_dist,
+            orthographic: false,
             ray_error: ray_error(pixel00, viewport_u, viewport_v, s.focus_dist),
         };
         // The ray direction is affine in (i, j): if the four corners are
         // valid, so is every pixel between them.
         let (wx, hy) = (s.width as f32, s.height as f32);
         for (x, y) in [(0.0, 0.0), (wx, 0.0), (0.0, hy), (wx, hy)] {
-            Ray::new(camera.center, camera.sample(x, y) - camera.center)
-                .map_err(|_| invalid("field of view or image size too extreme"))?;
+            Ray::new(camera.center, camera.sample(x, y) - camera.center).map_err(|_| {
+                // Far out, the image plane rounds onto the position itself.
+                if camera.ray_error > 0.01 {
+                    invalid(FAR)
+                } else {
+                    invalid("field of view or image size too extreme")
+                }
+            })?;
         }
         Ok(camera)
+    }
+
+    /// The orthographic camera of `s`: parallel rays along `forward`, from
+    /// a `height`-tall viewport centered on the position.
+    fn orthographic(
+        s: CameraSettings,
+        height: f32,
+        (u, v): (Vec3, Vec3),
+        forward: Ray,
+    ) -> Result<Self, Error> {
+        if !(height > 0.0 && height.is_finite()) {
+            return Err(invalid("orthographic height must be positive and finite"));
+        }
+        let viewport_u = u * (height * (s.width as f32 / s.height as f32));
+        let viewport_v = -v * height;
+        let delta_u = viewport_u / s.width as f32;
+        let delta_v = viewport_v / s.height as f32;
+        let pixel00 = s.lookfrom - viewport_u / 2.0 - viewport_v / 2.0 + (delta_u + delta_v) * 0.5;
+        // Neighbouring pixels must start at points f32 tells apart.
+        let m = pixel00.abs().max_element() + viewport_u.abs().max_element();
+        let step = delta_u.length().min(delta_v.length());
+        if !(pixel00.is_finite() && viewport_u.is_finite() && step > 8.0 * m * f32::EPSILON) {
+            return Err(invalid(FAR));
+        }
+        Ok(Camera {
+            width: s.width,
+            height: s.height,
+            center: s.lookfrom,
+            pixel00,
+            delta_u,
+            delta_v,
+            forward,
+            spread: delta_v.length(),
+            orthographic: true,
+            ray_error: 0.0,
+        })
+    }
+
+    /// Whether the rays are parallel (an orthographic camera).
+    #[must_use]
+    pub fn is_orthographic(&self) -> bool {
+        self.orthographic
+    }
+
+    /// The unit view direction.
+    #[must_use]
+    pub fn direction(&self) -> Vec3 {
+        self.forward.dir()
+    }
+
+    /// About how much of the scene a pixel covers at distance `t` along
+    /// its ray: `t * pixel_spread()` for a perspective camera, the pixel's
+    /// side for an orthographic one.
+    #[must_use]
+    pub fn pixel_footprint(&self, t: f32) -> f32 {
+        if self.orthographic {
+            self.spread
+        } else {
+            t * self.spread
+        }
     }
 
     /// Image width in pixels.
@@ -186,7 +269,9 @@ impl Camera {
     }
 
     /// The angle (radians, small-angle) a pixel spans: at distance `t` a
-    /// pixel covers about `t * pixel_spread()` of the scene.
+    /// perspective pixel covers about `t * pixel_spread()` of the scene. For
+    /// an orthographic camera, the side of a pixel in scene units (the same
+    /// at every distance).
     #[must_use]
     pub fn pixel_spread(&self) -> f32 {
         self.spread
@@ -218,9 +303,14 @@ impl Camera {
     /// exact rays through the area are positive combinations of the
     /// directions to its four corners, and the frustum is widened by the
     /// bound on how far rounding moves a computed ray from its exact one.
-    /// `None` for an empty or degenerate rectangle.
+    /// `None` for an empty or degenerate rectangle, and always for an
+    /// orthographic camera: its rays share no apex, so its tiles start
+    /// their walks at distance 0 (always correct, only slower).
     #[must_use]
     pub fn tile_frustum(&self, x0: u32, y0: u32, x1: u32, y1: u32) -> Option<Frustum> {
+        if self.orthographic {
+            return None;
+        }
         // Continuous coordinates: pixel i spans [i, i + 1).
         let corner = |x: u32, y: u32| self.sample(x as f32, y as f32) - self.center;
         let corners = [
@@ -235,6 +325,10 @@ impl Camera {
     }
 
     fn ray_to(&self, pixel: Vec3) -> Ray {
+        if self.orthographic {
+            // Every ray along the view, from its image-plane point.
+            return Ray::new(pixel, self.forward.dir()).unwrap_or(self.forward);
+        }
         // Validation made this unreachable; the fallback keeps the promise
         // of never failing without a panic path.
         Ray::new(self.center, pixel - self.center).unwrap_or(self.forward)
@@ -256,15 +350,4 @@ fn ray_error(pixel00: Vec3, viewport_u: Vec3, viewport_v: Vec3, focus_dist: f32)
         + 2.0 * viewport_u.abs().max_element()
         + 2.0 * viewport_v.abs().max_element();
     20.0 * m * (f32::EPSILON * 0.5) / focus_dist
-}
-
-/// `v / |v|` for a finite, non-zero `v`. Divides by the largest component
-/// first so that the squared length can neither overflow nor underflow.
-fn unit(v: Vec3) -> Option<Vec3> {
-    let largest = v.abs().max_element();
-    if !(largest > 0.0 && largest.is_finite()) {
-        return None;
-    }
-    let scaled = v / largest;
-    Some(scaled / sqrt32(scaled.length_squared()))
 }

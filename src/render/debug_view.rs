@@ -59,12 +59,14 @@ pub(crate) fn box_color(cube: IAabb) -> U8Vec3 {
     pearson_rgb(&bytes)
 }
 
-/// True when `ray` enters `cube` within `width_per_t * t` of one of its
-/// edges, `t` being the entry distance: the seed's test, "two intersection
-/// points on separate faces close to each other", as one point close to two
-/// faces. Lines so drawn stay about as wide on screen at every distance.
+/// True when `ray` enters `cube` within `width_at_0 + width_per_t * t` of
+/// one of its edges, `t` being the entry distance: the seed's test, "two
+/// intersection points on separate faces close to each other", as one point
+/// close to two faces. Lines so drawn stay about as wide on screen at every
+/// distance (a perspective camera's pixels grow with `t`, an orthographic
+/// camera's do not).
 #[must_use]
-pub(crate) fn enters_near_edge(ray: &Ray, cube: IAabb, width_per_t: f32) -> bool {
+pub(crate) fn enters_near_edge(ray: &Ray, cube: IAabb, width_at_0: f32, width_per_t: f32) -> bool {
     let lo = (cube.min.as_vec3() - ray.origin()) * ray.inv_dir();
     let hi = (cube.max.as_vec3() - ray.origin()) * ray.inv_dir();
     // A ray parallel to an axis' planes is inside that slab all along (the
@@ -72,7 +74,7 @@ pub(crate) fn enters_near_edge(ray: &Ray, cube: IAabb, width_per_t: f32) -> bool
     let parallel = ray.dir().cmpeq(glam::Vec3::ZERO);
     let near = glam::Vec3::select(parallel, glam::Vec3::NEG_INFINITY, lo.min(hi));
     let t = near.max_element().max(0.0);
-    let width = width_per_t * t;
+    let width = width_at_0 + width_per_t * t;
     if !(width > 0.0 && width.is_finite()) {
         return false;
     }
@@ -119,12 +121,12 @@ mod tests {
         };
         // Straight down onto the top face: near its edge x = 0, or its middle.
         let down = |x: f32, z: f32| Ray::new(Vec3::new(x, 10.0, z), Vec3::NEG_Y).unwrap();
-        assert!(enters_near_edge(&down(0.05, 2.0), cube, 0.01));
-        assert!(enters_near_edge(&down(3.95, 2.0), cube, 0.01));
-        assert!(!enters_near_edge(&down(2.0, 2.0), cube, 0.01));
-        assert!(!enters_near_edge(&down(0.2, 2.0), cube, 0.01));
+        assert!(enters_near_edge(&down(0.05, 2.0), cube, 0.0, 0.01));
+        assert!(enters_near_edge(&down(3.95, 2.0), cube, 0.0, 0.01));
+        assert!(!enters_near_edge(&down(2.0, 2.0), cube, 0.0, 0.01));
+        assert!(!enters_near_edge(&down(0.2, 2.0), cube, 0.0, 0.01));
         // A ray starting inside has no entry point to draw.
         let inside = Ray::new(Vec3::splat(0.01), Vec3::X).unwrap();
-        assert!(!enters_near_edge(&inside, cube, 0.01));
+        assert!(!enters_near_edge(&inside, cube, 0.0, 0.01));
     }
 }

@@ -14,6 +14,7 @@
 
 pub(crate) mod camera;
 pub(crate) mod debug_view;
+pub(crate) mod fit;
 #[cfg(feature = "std")]
 pub(crate) mod framebuffer;
 pub(crate) mod options;
@@ -25,3 +26,4 @@ pub(crate) mod shade;
 pub(crate) mod shader;
 pub(crate) mod stats;
 pub(crate) mod tiles;
+pub(crate) mod view;

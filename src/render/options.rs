@@ -1,6 +1,6 @@
 //! What a frame simulates: the render settings, each effect opt-in.
 
-use glam::Vec3;
+use glam::{U8Vec3, Vec3};
 
 use crate::error::Error;
 
@@ -29,6 +29,20 @@ impl Occlusion {
 pub struct Fog {
     /// Distance at which a hit is all fog, in voxels; positive and finite.
     pub distance: f32,
+}
+
+/// What a pixel whose primary ray hits nothing shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Background {
+    /// The sky: the gradient of the lit look, [`crate::FLAT_SKY`] under
+    /// `flat` (the default).
+    #[default]
+    Sky,
+    /// Nothing: alpha 0 (and color 0). With several samples per pixel the
+    /// alpha is the share of samples that hit, the color their mean.
+    Transparent,
+    /// One opaque color.
+    Color(U8Vec3),
 }
 
 /// The look of a frame: which effects it simulates. Every effect is off
@@ -63,6 +77,8 @@ pub struct RenderOptions {
     pub samples: u16,
     /// Distance fog, off when `None`.
     pub fog: Option<Fog>,
+    /// What misses show.
+    pub background: Background,
 }
 
 impl Default for RenderOptions {
@@ -84,6 +100,7 @@ impl RenderOptions {
             occlusion: None,
             samples: 1,
             fog: None,
+            background: Background::Sky,
         }
     }
 
@@ -150,6 +167,7 @@ impl RenderOptions {
                 occlusion: None,
                 samples: 1,
                 fog: None,
+                background: self.background,
             };
         }
         RenderOptions {

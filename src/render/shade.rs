@@ -130,6 +130,13 @@ pub fn pack(c: U8Vec3) -> u32 {
     u32::from_ne_bytes([c.x, c.y, c.z, 255])
 }
 
+/// Packs a color with alpha `a`, R in the first byte.
+#[inline]
+#[must_use]
+pub(crate) fn pack_alpha(c: U8Vec3, a: u8) -> u32 {
+    u32::from_ne_bytes([c.x, c.y, c.z, a])
+}
+
 /// The inverse of [`pack`].
 #[inline]
 #[must_use]

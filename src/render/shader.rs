@@ -12,9 +12,11 @@ use glam::{U8Vec3, UVec3, Vec3};
 use crate::geom::{Face, Ray};
 use crate::render::camera::Camera;
 use crate::render::debug_view::{box_color, enters_near_edge};
-use crate::render::options::RenderOptions;
+use crate::render::options::{Background, RenderOptions};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
-use crate::render::shade::{face_index, face_weights, fog_blend, lit, pack, sky, FLAT_SKY};
+use crate::render::shade::{
+    face_index, face_weights, fog_blend, lit, pack, pack_alpha, sky, FLAT_SKY,
+};
 use crate::render::stats::RayStats;
 use crate::scene::Hit;
 use crate::scene::{Scene, WalkMemory};
@@ -35,8 +37,9 @@ pub(crate) struct Shader<'c> {
     sunlit: [bool; 7],
     /// Unit direction toward the sun.
     sun: Vec3,
-    /// The debug view's edge half-width per unit of distance.
-    edge_per_t: f32,
+    /// The debug view's edge half-width: at distance 0, and its growth per
+    /// unit of distance.
+    edge: (f32, f32),
 }
 
 impl<'c> Shader<'c> {
@@ -52,7 +55,11 @@ impl<'c> Shader<'c> {
             shadowed,
             sunlit,
             sun,
-            edge_per_t: EDGE_PIXELS * camera.pixel_spread(),
+            edge: if camera.is_orthographic() {
+                (EDGE_PIXELS * camera.pixel_spread(), 0.0)
+            } else {
+                (0.0, EDGE_PIXELS * camera.pixel_spread())
+            },
         }
     }
 
@@ -143,6 +150,29 @@ pub(crate) trait Kernel: Sync {
     }
 }
 
+impl Shader<'_> {
+    /// The packed pixel of a primary ray that missed: `sky` is the sky's
+    /// color in this look.
+    #[inline]
+    fn miss(&self, sky: U8Vec3) -> u32 {
+        match self.options.background {
+            Background::Sky => pack(sky),
+            Background::Transparent => 0,
+            Background::Color(c) => pack(c),
+        }
+    }
+
+    /// The opaque color a missed sample adds to a pixel's mean (`sky` in
+    /// this look); unused for a transparent background.
+    #[inline]
+    fn miss_color(&self, sky: U8Vec3) -> U8Vec3 {
+        match self.options.background {
+            Background::Color(c) => c,
+            Background::Sky | Background::Transparent => sky,
+        }
+    }
+}
+
 /// Rays counted for one primary ray and its hit.
 fn primary(hit: Option<&Hit>) -> RayStats {
     RayStats {
@@ -169,8 +199,8 @@ impl Kernel for Flat<'_, '_> {
         let hit = scene
             .trace_from_with(&ray, t_start, &mut memory.primary)
             .hit;
-        let color = hit.map_or(FLAT_SKY, |h| h.voxel.color);
-        (pack(color), primary(hit.as_ref()))
+        let rgba = hit.map_or_else(|| self.0.miss(FLAT_SKY), |h| pack(h.voxel.color));
+        (rgba, primary(hit.as_ref()))
     }
 }
 
@@ -189,18 +219,18 @@ impl Kernel for DebugView<'_, '_> {
         let ray = self.0.camera.get_ray(x, y);
         let mut edge = None;
         let traced = scene.trace_visiting(&ray, &mut |cube| {
-            if enters_near_edge(&ray, cube, self.0.edge_per_t) {
+            if enters_near_edge(&ray, cube, self.0.edge.0, self.0.edge.1) {
                 edge = Some(box_color(cube));
             }
             edge.is_none()
         });
-        let color = match (edge, traced.hit) {
-            (Some(color), _) => color,
-            (None, Some(_)) => U8Vec3::ZERO,
-            (None, None) => sky(ray.dir()),
+        let rgba = match (edge, traced.hit) {
+            (Some(color), _) => pack(color),
+            (None, Some(_)) => pack(U8Vec3::ZERO),
+            (None, None) => self.0.miss(sky(ray.dir())),
         };
         // A ray stopped at an edge still counts as one primary ray.
-        (pack(color), primary(traced.hit.as_ref()))
+        (rgba, primary(traced.hit.as_ref()))
     }
 
     fn uses_beam(&self) -> bool {
@@ -230,9 +260,13 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kerne
         if !AA {
             let ray = camera.get_ray(x, y);
             let (color, stats) = self.sample(scene, &ray, t_start, x, y, 0, memory);
+            if stats.primary_hits == 0 {
+                return (self.0.miss(color), stats);
+            }
             return (pack(color), stats);
         }
         let samples = u32::from(self.0.options.samples);
+        let transparent = self.0.options.background == Background::Transparent;
         let key = pixel_key(x, y, 0);
         let mut sum = UVec3::ZERO;
         let mut stats = RayStats::default();
@@ -240,8 +274,22 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kerne
             let offset = r2(s, key);
             let ray = camera.get_ray_at(x as f32 + offset.x, y as f32 + offset.y);
             let (color, rays) = self.sample(scene, &ray, t_start, x, y, s, memory);
-            sum += color.as_uvec3();
+            if rays.primary_hits > 0 {
+                sum += color.as_uvec3();
+            } else if !transparent {
+                sum += self.0.miss_color(color).as_uvec3();
+            }
             stats += rays;
+        }
+        if transparent {
+            // The mean of the hits, covering the share of samples that hit.
+            let hits = stats.primary_hits as u32;
+            if hits == 0 {
+                return (0, stats);
+            }
+            let mean = (sum + UVec3::splat(hits / 2)) / hits;
+            let alpha = (255 * hits + samples / 2) / samples;
+            return (pack_alpha(mean.as_u8vec3(), alpha as u8), stats);
         }
         // The rounded mean, in integers.
         let mean = (sum + UVec3::splat(samples / 2)) / samples;
@@ -252,8 +300,8 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kerne
 impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
     Lit<'_, '_, SHADOWS, AO, FOG, AA>
 {
-    /// One camera sample, its walk starting at `t_start`: its color and
-    /// rays.
+    /// One camera sample, its walk starting at `t_start`: its color (the
+    /// sky's when it misses: `primary_hits` is then 0) and rays.
     #[allow(clippy::too_many_arguments)]
     #[inline]
     fn sample<'s, S: Scene + ?Sized>(

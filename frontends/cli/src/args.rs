@@ -5,9 +5,13 @@ use std::path::PathBuf;
 use clap::Parser;
 use voxtrace::glam::Vec3;
 use voxtrace::Rect;
-use voxtrace_cli::Backend;
+use voxtrace_cli::{parse_frame_range, Backend, FrameRange};
 
-/// Render the seeded Perlin terrain of the voxtrace paper to a PNG.
+use crate::output::FormatArg;
+use crate::view::{parse_background, parse_orbit, BackgroundArg, OrbitArg, ProjectionArg, ViewArg};
+
+/// Render the seeded Perlin terrain of the voxtrace paper, or a MagicaVoxel
+/// .vox scene, to an image (PNG, BMP, TGA or PPM).
 #[derive(Debug, Parser)]
 #[command(
     name = "voxtrace",
@@ -31,9 +35,9 @@ pub struct Args {
     #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(i32).range(1..=voxtrace::MAX_COORD as i64))]
     pub size: i32,
 
-    /// Camera position X,Y,Z [default: N-10,N-10,N-10; with --vox, a
-    /// three-quarter view that frames the model].
-    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    /// Camera position X,Y,Z [default: N-10,N-10,N-10; with --vox, a view
+    /// of the model's front from a little above that frames its voxels].
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, conflicts_with_all = ["view", "orbit"])]
     pub position: Option<Vec3>,
 
     /// Point the camera looks at, X,Y,Z [default: 0,0,0; with --vox, the
@@ -44,6 +48,49 @@ pub struct Args {
     /// Vertical field of view in degrees, in (0, 180).
     #[arg(long, default_value_t = voxtrace::DEFAULT_FOV)]
     pub fov: f32,
+
+    /// The scene's up direction X,Y,Z: the image's top leans toward it. An
+    /// --up parallel to the view is refused; without --up a view straight
+    /// down has the image's top toward -z (a map), straight up its mirror
+    /// [default: 0,1,0].
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub up: Option<Vec3>,
+
+    /// How rays leave the camera.
+    #[arg(long, value_enum, default_value_t = ProjectionArg::Perspective)]
+    pub projection: ProjectionArg,
+
+    /// Height of an orthographic image in voxels [default: fits the scene].
+    #[arg(long, value_name = "VOXELS", value_parser = parse_distance)]
+    pub ortho_height: Option<f32>,
+
+    /// A named view of the whole scene, framed to fit: front is +z (a .vox
+    /// model's front), right +x, top +y (a map, -z at the top); iso is the
+    /// isometric view from front, right and above, orthographic.
+    #[arg(long, value_enum, conflicts_with = "orbit")]
+    pub view: Option<ViewArg>,
+
+    /// Orbit the target: YAW degrees around the vertical from the front
+    /// (+z, positive toward +x), PITCH degrees above the horizon, at
+    /// DISTANCE [default distance: framed to fit].
+    #[arg(long, value_name = "YAW,PITCH[,DISTANCE]", value_parser = parse_orbit, allow_hyphen_values = true)]
+    pub orbit: Option<OrbitArg>,
+
+    /// Render N frames of a turntable: the camera turns 360 degrees about
+    /// the vertical through its target; --out needs a run of # for the
+    /// frame number (spin_####.png), frames count from 1.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub frames: Option<u32>,
+
+    /// Render only frames A to B of --frames (A-B, or one frame A): the same
+    /// bytes as those frames of the full run.
+    #[arg(long, value_name = "A-B", value_parser = parse_frame_range, requires = "frames")]
+    pub frame_range: Option<FrameRange>,
+
+    /// What pixels whose ray misses every voxel show: transparent (alpha
+    /// 0, in formats with alpha: png, tga, bmp), sky, or a color R,G,B.
+    #[arg(long, value_name = "transparent|sky|R,G,B", value_parser = parse_background, default_value = "sky")]
+    pub background: BackgroundArg,
 
     /// Terrain seed [default: random, printed to stderr].
     #[arg(long)]
@@ -57,9 +104,19 @@ pub struct Args {
     #[arg(long, default_value_t = 1080, value_parser = clap::value_parser!(u32).range(1..=65535))]
     pub height: u32,
 
-    /// Output PNG path.
+    /// Output image path; the extension picks the format (png, bmp, tga,
+    /// ppm; no extension: png), `-` writes to standard output.
     #[arg(long, default_value = "render.png")]
     pub out: PathBuf,
+
+    /// Output format, whatever the --out extension says (for --out -).
+    #[arg(long, value_enum)]
+    pub format: Option<FormatArg>,
+
+    /// Write the terrain of --size and --seed as a MagicaVoxel .vox file
+    /// (its surface voxels; --size at most 128) and render nothing.
+    #[arg(long, value_name = "FILE", conflicts_with = "vox")]
+    pub export_vox: Option<PathBuf>,
 
     /// Render only the crop X,Y,W,H of the frame (the PNG is W x H).
     #[arg(long, value_parser = parse_rect)]
@@ -115,7 +172,7 @@ pub struct Args {
     pub farm: crate::farm::TileArgs,
 }
 
-fn parse_numbers<const N: usize, T: std::str::FromStr>(
+pub(crate) fn parse_numbers<const N: usize, T: std::str::FromStr>(
     s: &str,
     what: &str,
 ) -> Result<[T; N], String> {
@@ -134,7 +191,7 @@ fn parse_numbers<const N: usize, T: std::str::FromStr>(
         .map_err(|_| format!("expected {what}, got '{s}'"))
 }
 
-fn parse_vec3(s: &str) -> Result<Vec3, String> {
+pub(crate) fn parse_vec3(s: &str) -> Result<Vec3, String> {
     let [x, y, z] = parse_numbers::<3, f32>(s, "three numbers X,Y,Z")?;
     let v = Vec3::new(x, y, z);
     if v.is_finite() {

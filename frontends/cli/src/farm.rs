@@ -103,7 +103,7 @@ pub fn select(
     let out = args.out.to_str().map_or(args.out.clone(), |pattern| {
         PathBuf::from(tile_name(pattern, tile, grid.count()))
     });
-    if output::format_of(&out)? != output::Format::Png {
+    if output::format_of(&out, args.format)? != output::Format::Png {
         return Err(format!(
             "--tiles writes PNG parts (their place in the frame is a PNG text chunk), not --out {}",
             out.display()
@@ -167,6 +167,9 @@ pub fn subcommand() -> Option<ExitCode> {
     if rest.first().is_none_or(|first| first != "stitch") {
         return None;
     }
+    let argv: Vec<String> = std::iter::once(program.to_string_lossy().into_owned())
+        .chain(rest.iter().map(|a| a.to_string_lossy().into_owned()))
+        .collect();
     let parsed = StitchArgs::try_parse_from(
         std::iter::once(OsString::from(format!(
             "{} stitch",
@@ -176,7 +179,7 @@ pub fn subcommand() -> Option<ExitCode> {
     );
     let args = match parsed {
         Ok(args) => args,
-        Err(e) => return Some(crate::clap_failure(&e)),
+        Err(e) => return Some(crate::clap_failure(&e, &argv)),
     };
     Some(match run_stitch(&args) {
         Ok(()) => ExitCode::SUCCESS,
@@ -195,7 +198,7 @@ fn run_stitch(args: &StitchArgs) -> Result<(), String> {
     if args.parts.is_empty() {
         return Err("stitch needs at least one PART (voxtrace stitch PART... --out FILE)".into());
     }
-    if output::format_of(out)? != output::Format::Png {
+    if output::format_of(out, None)? != output::Format::Png {
         return Err(format!("stitch writes PNG, not --out {}", out.display()));
     }
     let frame = stitch(&args.parts, args.allow_partial)?;

@@ -6,9 +6,17 @@
 //!
 //! Errors are one-line messages meant for a user's terminal.
 
+mod export;
+mod frames;
+mod framing;
 pub mod part;
 mod pipeline;
 pub mod stitch;
 pub mod tiles;
+mod units;
 
-pub use pipeline::{framing, on_threads, Backend, BuiltScene, Rendered};
+pub use export::{export_vox, terrain_box};
+pub use frames::{frame_path, parse_frame_range, turntable, FrameRange};
+pub use framing::{fit, framing, Boxes, FILL, MODEL_VIEW};
+pub use pipeline::{on_threads, Backend, BuiltScene, Rendered};
+pub use units::human_bytes;

@@ -1,37 +1,52 @@
-//! `voxtrace`: renders the seeded terrain to a PNG.
+//! `voxtrace`: renders the seeded terrain, or a `.vox` scene, to an image.
 //!
 //! Exit codes: 0 on success, 2 on bad arguments, unusable input or output, or
 //! a scene that does not fit in memory, with one line on stderr naming the
 //! problem.
 
 mod args;
+mod errors;
 mod farm;
 mod output;
 mod progress;
+mod view;
 
 use std::fs::File;
+use std::io::Write;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
-use clap::Parser;
+use clap::parser::ValueSource;
+use clap::{ArgMatches, CommandFactory, FromArgMatches};
 use voxtrace::glam::Vec3;
 use voxtrace::{
-    Camera, CameraSettings, Fog, IAabb, Occlusion, Rect, RenderOptions, VoxModel, VoxelGenerator,
+    Background, Camera, CameraSettings, Fog, IAabb, Occlusion, Projection, RayStats, Rect,
+    RenderOptions, VoxModel, VoxelGenerator, VoxelSource,
 };
-use voxtrace_cli::{framing, on_threads, BuiltScene};
+use voxtrace_cli::{
+    export_vox, frame_path, on_threads, terrain_box, turntable, Boxes, BuiltScene, FrameRange,
+};
 
 use args::Args;
 use progress::Progress;
+use view::{camera_settings, describe, BackgroundArg, ProjectionArg, Stage};
 
 fn main() -> ExitCode {
     if let Some(code) = farm::subcommand() {
         return code;
     }
-    let args = match Args::try_parse() {
-        Ok(args) => args,
-        Err(e) => return clap_failure(&e),
+    let argv: Vec<String> = std::env::args_os()
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
+    let parsed = Args::command()
+        .try_get_matches_from(&argv)
+        .and_then(|m| Args::from_arg_matches(&m).map(|a| (a, m)));
+    let (args, matches) = match parsed {
+        Ok(parsed) => parsed,
+        Err(e) => return clap_failure(&e, &argv),
     };
-    match run(&args) {
+    match run(&args, &matches) {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
             eprintln!("error: {message}");
@@ -41,19 +56,20 @@ fn main() -> ExitCode {
 }
 
 /// Help and version go to stdout with exit 0; a parse error is one line
-/// (clap's first, which names the flag and the bad value) with exit 2.
-fn clap_failure(e: &clap::Error) -> ExitCode {
+/// with clap's hints kept, and exit 2.
+fn clap_failure(e: &clap::Error, argv: &[String]) -> ExitCode {
     use clap::error::ErrorKind;
     if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
         let _ = e.print();
         return ExitCode::SUCCESS;
     }
-    let text = e.render().to_string();
-    eprintln!(
-        "{}",
-        text.lines().next().unwrap_or("error: invalid arguments")
-    );
+    eprintln!("{}", errors::one_line(e, argv));
     ExitCode::from(2)
+}
+
+/// Whether the flag `id` was given on the command line (not a default).
+fn given(matches: &ArgMatches, id: &str) -> bool {
+    matches.value_source(id) == Some(ValueSource::CommandLine)
 }
 
 /// A seed from the clock and process id: different per run, printed so the
@@ -68,96 +84,171 @@ fn random_seed() -> u64 {
 
 /// What the CLI renders.
 enum Subject {
-    /// The seeded terrain.
-    Terrain { seed: u64 },
+    /// The seeded terrain; a `random` seed is printed.
+    Terrain { seed: u64, random: bool },
     /// A loaded `.vox` scene (boxed: its palette alone is 768 bytes).
     Model(Box<VoxModel>),
 }
 
-fn run(args: &Args) -> Result<(), String> {
+impl Subject {
+    /// The material at `pos`, to tell a camera inside a voxel.
+    fn material(&self, pos: voxtrace::glam::IVec3) -> u8 {
+        match self {
+            Subject::Terrain { seed, .. } => VoxelGenerator::new(*seed).material(pos),
+            Subject::Model(model) => model.material(pos),
+        }
+    }
+}
+
+/// The terrain's seed, and whether it was drawn at random (and so must be
+/// printed, once the run is known to go ahead).
+fn terrain_seed(args: &Args) -> (u64, bool) {
+    match args.seed {
+        Some(seed) => (seed, false),
+        None => (random_seed(), true),
+    }
+}
+
+fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
+    if let Some(path) = &args.export_vox {
+        return export(args, path);
+    }
     farm::check_flags(args)?;
+    if args.farm.tiles.is_some() && args.frames.is_some() {
+        return Err("--tiles renders one tile of a still: it does not take --frames".into());
+    }
     let subject = match &args.vox {
         Some(path) => Subject::Model(Box::new(
             VoxModel::load(path)
                 .map_err(|e| format!("cannot load --vox {}: {e}", path.display()))?,
         )),
-        None => Subject::Terrain {
-            seed: args.seed.unwrap_or_else(|| {
-                let seed = random_seed();
-                eprintln!("seed: {seed}");
-                seed
-            }),
-        },
-    };
-    let (bounds, position, lookat) = match &subject {
-        Subject::Terrain { .. } => (
-            IAabb::centered(args.size),
-            args.position
-                .unwrap_or(CameraSettings::paper(args.size).lookfrom),
-            args.lookat.unwrap_or(Vec3::ZERO),
-        ),
-        Subject::Model(model) => {
-            let aspect = args.width as f32 / args.height as f32;
-            let (eye, center) = framing(model.bounds(), args.fov, aspect);
-            (
-                model.bounds(),
-                args.position.unwrap_or(eye),
-                args.lookat.unwrap_or(center),
-            )
+        None => {
+            let (seed, random) = terrain_seed(args);
+            Subject::Terrain { seed, random }
         }
     };
-    let camera = Camera::new(CameraSettings {
-        width: args.width,
-        height: args.height,
-        vertical_fov: args.fov,
-        lookfrom: position,
-        lookat,
-        ..CameraSettings::default()
-    })
-    .map_err(|e| e.to_string())?;
+    let (bounds, stage) = match &subject {
+        Subject::Terrain { .. } => (
+            IAabb::centered(args.size),
+            Stage {
+                boxes: Boxes::Bounds(IAabb::centered(args.size)),
+                target: Vec3::ZERO,
+                default_position: Some(CameraSettings::paper(args.size).lookfrom),
+            },
+        ),
+        Subject::Model(model) => (
+            model.bounds(),
+            Stage {
+                boxes: Boxes::Model(model),
+                target: (model.bounds().min + model.bounds().max).as_vec3() * 0.5,
+                default_position: None,
+            },
+        ),
+    };
+    let settings = camera_settings(args, &stage)?;
+    let frames = args.frames.unwrap_or(1);
+    let range = args.frame_range.unwrap_or(FrameRange::all(frames));
+    range.check_within(frames)?;
+    // Every frame's camera, checked before anything is built.
+    let cameras = range
+        .frames()
+        .map(|k| {
+            let s = turntable(settings, k, frames);
+            Camera::new(s).map(|c| (k, s, c)).map_err(|e| e.to_string())
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    let first = &cameras[0].2;
     let options = render_options(args, bounds);
-    let tile = farm::select(args, &camera, &options)?;
+    let tile = farm::select(args, first, &options)?;
     let region = match &tile {
         Some(tile) => tile.placement.rect,
-        None => args.region.unwrap_or(Rect::full(&camera)),
+        None => args.region.unwrap_or(Rect::full(first)),
     };
-    let out = tile.as_ref().map_or(&args.out, |tile| &tile.out);
-    region.validate(&camera).map_err(|_| {
+    region.validate(first).map_err(|_| {
         format!(
             "--region {},{},{},{} does not fit in the {}x{} frame",
             region.x, region.y, region.width, region.height, args.width, args.height
         )
     })?;
 
+    let out = tile.as_ref().map_or(&args.out, |tile| &tile.out);
+    let format = output::format_of(out, args.format)?;
     let mut notes = ignored_effects(&options);
-    if args.vox.is_some() && args.seed.is_some() {
-        notes.push("--seed shapes the terrain; a --vox scene does not use it".to_string());
-    }
+    notes.extend(ignored_flags(args, matches, &settings, format));
 
     // Check the output first: a bad path fails now, not after the render.
-    let format = output::format_of(out)?;
-    let file =
-        File::create(out).map_err(|e| format!("cannot write --out {}: {e}", out.display()))?;
-    let write = |pixels: &[u32]| {
-        match &tile {
-            Some(tile) => farm::write_tile(file, tile, pixels),
-            None => output::write(file, format, region.width, region.height, pixels),
-        }
-        .map_err(|e| format!("cannot write --out {}: {e}", out.display()))
+    let to_stdout = output::is_stdout(out);
+    if to_stdout && tile.is_some() {
+        return Err(
+            "--tiles writes a part file for `voxtrace stitch`: --out - cannot be one".into(),
+        );
+    }
+    if to_stdout && args.frames.is_some() {
+        return Err("--frames writes one file per frame: --out - cannot hold them".into());
+    }
+    let paths: Vec<PathBuf> = if args.frames.is_some() {
+        range
+            .frames()
+            .map(|k| frame_path(&args.out, k))
+            .collect::<Result<_, _>>()?
+    } else {
+        vec![out.clone()]
     };
-    let result = render_to(args, &subject, bounds, &options, &camera, region, write);
-    match result {
+    let first_file = if to_stdout {
+        None
+    } else {
+        Some(create(&paths[0])?)
+    };
+    let job = Job {
+        args,
+        subject: &subject,
+        bounds,
+        options: &options,
+        region,
+        format,
+        tile: tile.as_ref(),
+    };
+    let result = job.render_all(&cameras, &paths, first_file, &mut notes);
+    match &result {
         // Notes only after a success: an error stays the one line on stderr.
         Ok(()) => notes.iter().for_each(|note| eprintln!("note: {note}")),
-        Err(_) => {
-            let _ = std::fs::remove_file(out);
+        // The first file was created up front: gone again if nothing came
+        // of it (a file that failed half-written is removed where it failed).
+        Err(_) if !to_stdout => {
+            if std::fs::metadata(&paths[0]).is_ok_and(|m| m.len() == 0) {
+                let _ = std::fs::remove_file(&paths[0]);
+            }
         }
+        Err(_) => {}
     }
     result
 }
 
+fn create(path: &Path) -> Result<File, String> {
+    File::create(path).map_err(|e| format!("cannot write --out {}: {e}", path.display()))
+}
+
+/// `--export-vox`: the terrain as a `.vox` file.
+fn export(args: &Args, path: &Path) -> Result<(), String> {
+    let (seed, random) = terrain_seed(args);
+    if random {
+        eprintln!("seed: {seed}");
+    }
+    let mut bytes = Vec::new();
+    let terrain = VoxelGenerator::new(seed);
+    let count = export_vox(&terrain, terrain_box(&terrain, args.size), &mut bytes)?;
+    std::fs::write(path, &bytes)
+        .map_err(|e| format!("cannot write --export-vox {}: {e}", path.display()))?;
+    if args.stats {
+        eprintln!("voxels: {count}");
+        eprintln!("file_bytes: {}", bytes.len());
+    }
+    Ok(())
+}
+
 /// The effects the flags ask for; fog thickens over the scene's scale.
 fn render_options(args: &Args, bounds: IAabb) -> RenderOptions {
+    let BackgroundArg(background) = args.background;
     RenderOptions {
         flat: args.flat,
         debug: args.debug,
@@ -172,6 +263,7 @@ fn render_options(args: &Args, bounds: IAabb) -> RenderOptions {
             // 3 x --size for the terrain: one and a half times the volume's side.
             distance: 1.5 * bounds.size().max_element() as f32,
         }),
+        background,
     }
 }
 
@@ -211,52 +303,165 @@ fn ignored_effects(asked: &RenderOptions) -> Vec<String> {
     notes
 }
 
-/// Builds the scene and renders it with the thread count of `--threads`,
-/// then hands the pixels to `write` and, with `--stats`, prints the figures.
-fn render_to(
+/// One note for each flag given that changes nothing.
+fn ignored_flags(
     args: &Args,
-    subject: &Subject,
-    bounds: IAabb,
-    options: &RenderOptions,
-    camera: &Camera,
-    region: Rect,
-    write: impl FnOnce(&[u32]) -> Result<(), String>,
-) -> Result<(), String> {
-    let threaded = args.threads != Some(1);
-    let (built, build, rendered) = on_threads(args.threads, || {
-        let (built, build) = match subject {
-            Subject::Terrain { seed } => {
-                let terrain = VoxelGenerator::new(*seed);
-                BuiltScene::build_from(args.backend, &terrain, bounds, threaded)?
-            }
-            Subject::Model(model) => {
-                BuiltScene::build_from(args.backend, model.as_ref(), bounds, threaded)?
-            }
-        };
-        let progress = Progress::rows(region.height);
-        let rendered = built.render(camera, region, options, threaded, &|rows| {
-            progress.advance(rows);
-        });
-        progress.finish();
-        Ok((built, build, rendered?))
-    })?;
-
-    let encode_started = Instant::now();
-    write(&rendered.pixels)?;
-    let encode = encode_started.elapsed();
-
-    if args.stats {
-        let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
-        let rays = rendered.rays;
-        let mrays = rays.primary_rays as f64 / rendered.elapsed.as_secs_f64().max(1e-9) / 1e6;
-        eprintln!("build_ms: {:.3}", ms(build));
-        eprintln!("render_ms: {:.3}", ms(rendered.elapsed));
-        eprintln!("encode_ms: {:.3}", ms(encode));
-        eprintln!("primary_rays: {}", rays.primary_rays);
-        eprintln!("shadow_rays: {}", rays.shadow_rays);
-        eprintln!("ao_rays: {}", rays.ao_rays);
-        eprintln!("storage_bytes: {}", built.scene().storage_bytes());
-        eprintln!("mrays_per_s: {mrays:.3}");
+    matches: &ArgMatches,
+    settings: &CameraSettings,
+    format: output::Format,
+) -> Vec<String> {
+    let mut notes = Vec::new();
+    let vox = args.vox.is_some();
+    if vox && args.seed.is_some() {
+        notes.push("--seed shapes the terrain; a --vox scene does not use it".to_string());
     }
-    Ok(())
+    if vox && given(matches, "size") {
+        notes.push("--size sets the terrain's volume; a --vox scene has its own".to_string());
+    }
+    if given(matches, "ao_distance") && args.ao.is_none() {
+        notes.push("--ao-distance has no effect without --ao".to_string());
+    }
+    let orthographic = matches!(settings.projection, Projection::Orthographic { .. });
+    if given(matches, "ortho_height") && !orthographic {
+        notes.push(
+            "--ortho-height has no effect on a perspective camera (add --projection orthographic)"
+                .to_string(),
+        );
+    }
+    if given(matches, "fov") && orthographic {
+        notes
+            .push("--fov has no effect on an orthographic camera (see --ortho-height)".to_string());
+    }
+    if args.projection == ProjectionArg::Perspective && given(matches, "projection") && orthographic
+    {
+        notes.push("--view iso is orthographic: ignoring --projection perspective".to_string());
+    }
+    if args.background.0 == Background::Transparent && !output::has_alpha(format) {
+        notes.push(
+            "this format has no alpha channel: --background transparent writes black there"
+                .to_string(),
+        );
+    }
+    notes
+}
+
+/// What every frame of one run shares.
+struct Job<'a> {
+    args: &'a Args,
+    subject: &'a Subject,
+    bounds: IAabb,
+    options: &'a RenderOptions,
+    region: Rect,
+    format: output::Format,
+    /// The render-farm tile this run renders, written as a part.
+    tile: Option<&'a farm::TileJob>,
+}
+
+impl Job<'_> {
+    /// Writes one frame's pixels into `first` (the first path, created up
+    /// front) or else `path`, in the run's format.
+    fn write(&self, first: Option<File>, path: &Path, pixels: &[u32]) -> Result<(), String> {
+        let region = self.region;
+        let alpha = self.options.background == Background::Transparent;
+        match first {
+            Some(file) => Ok(Box::new(file) as Box<dyn Write>),
+            None if output::is_stdout(path) => Ok(Box::new(std::io::stdout().lock()) as _),
+            None => create(path).map(|f| Box::new(f) as _),
+        }
+        .and_then(|out| {
+            output::write(out, self.format, region.width, region.height, pixels, alpha)
+                .map_err(|e| format!("cannot write --out {}: {e}", path.display()))
+        })
+    }
+
+    /// Builds the scene once and renders every frame's camera into its
+    /// path (`first` is the first path, already created; `None` for
+    /// standard output), then prints `--stats`.
+    fn render_all(
+        &self,
+        cameras: &[(u32, CameraSettings, Camera)],
+        paths: &[PathBuf],
+        first: Option<File>,
+        notes: &mut Vec<String>,
+    ) -> Result<(), String> {
+        let args = self.args;
+        let threaded = args.threads != Some(1);
+        let region = self.region;
+        let inside = cameras.iter().any(|(_, s, _)| {
+            let cell = s.lookfrom.floor().as_ivec3();
+            self.bounds.contains(cell) && self.subject.material(cell) != 0
+        });
+        if inside {
+            notes.push(
+                "the camera starts inside a solid voxel: its rays see only that voxel (move it with --position)"
+                    .to_string(),
+            );
+        }
+        if let Subject::Terrain { seed, random: true } = self.subject {
+            eprintln!("seed: {seed}");
+        }
+        let mut first = first;
+        let (built, build, totals) = on_threads(args.threads, || {
+            let (built, build) = match self.subject {
+                Subject::Terrain { seed, .. } => {
+                    let terrain = VoxelGenerator::new(*seed);
+                    BuiltScene::build_from(args.backend, &terrain, self.bounds, threaded)?
+                }
+                Subject::Model(model) => {
+                    BuiltScene::build_from(args.backend, model.as_ref(), self.bounds, threaded)?
+                }
+            };
+            let total_rows = region.height.saturating_mul(cameras.len() as u32);
+            let progress = Progress::rows(total_rows);
+            let mut totals = (RayStats::default(), Duration::ZERO, Duration::ZERO);
+            for ((_, _, camera), path) in cameras.iter().zip(paths) {
+                let rendered = built.render(camera, region, self.options, threaded, &|rows| {
+                    progress.advance(rows);
+                });
+                let rendered = match rendered {
+                    Ok(r) => r,
+                    Err(e) => {
+                        progress.finish();
+                        return Err(e);
+                    }
+                };
+                let started = Instant::now();
+                let written = match (first.take(), self.tile) {
+                    (Some(file), Some(tile)) => farm::write_tile(file, tile, &rendered.pixels)
+                        .map_err(|e| format!("cannot write --out {}: {e}", path.display())),
+                    (first, _) => self.write(first, path, &rendered.pixels),
+                };
+                if let Err(e) = written {
+                    progress.finish();
+                    if !output::is_stdout(path) {
+                        let _ = std::fs::remove_file(path);
+                    }
+                    return Err(e);
+                }
+                totals.0 += rendered.rays;
+                totals.1 += rendered.elapsed;
+                totals.2 += started.elapsed();
+            }
+            progress.finish();
+            Ok((built, build, totals))
+        })?;
+        if args.stats {
+            let (rays, render, encode) = totals;
+            let ms = |d: Duration| d.as_secs_f64() * 1e3;
+            let mrays = rays.primary_rays as f64 / render.as_secs_f64().max(1e-9) / 1e6;
+            let v = |v: voxtrace::glam::IVec3| format!("{},{},{}", v.x, v.y, v.z);
+            eprintln!("build_ms: {:.3}", ms(build));
+            eprintln!("render_ms: {:.3}", ms(render));
+            eprintln!("encode_ms: {:.3}", ms(encode));
+            eprintln!("primary_rays: {}", rays.primary_rays);
+            eprintln!("shadow_rays: {}", rays.shadow_rays);
+            eprintln!("ao_rays: {}", rays.ao_rays);
+            eprintln!("storage_bytes: {}", built.scene().storage_bytes());
+            eprintln!("mrays_per_s: {mrays:.3}");
+            eprintln!("scene_min: {}", v(self.bounds.min));
+            eprintln!("scene_max: {}", v(self.bounds.max));
+            eprintln!("camera: {}", describe(&cameras[0].1, args.up.is_some()));
+        }
+        Ok(())
+    }
 }

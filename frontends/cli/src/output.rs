@@ -1,10 +1,12 @@
 //! Writing the image: PNG through voxtrace's own encoder, and with the
 //! `image` feature BMP, TGA and PPM through the image crate (built with only
-//! those codecs), chosen by the `--out` extension.
+//! those codecs), chosen by `--format` or the `--out` extension; `--out -`
+//! writes to standard output.
 
-use std::fs::File;
-use std::io::BufWriter;
+use std::io::{BufWriter, Write};
 use std::path::Path;
+
+use clap::ValueEnum;
 
 /// The file format `--out` asks for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -16,20 +18,61 @@ pub enum Format {
     Other(image::ImageFormat),
 }
 
+/// `--format`: every format a build can write.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FormatArg {
+    /// PNG, with alpha.
+    Png,
+    /// Windows bitmap (with the `image` feature), with alpha.
+    Bmp,
+    /// Targa (with the `image` feature), with alpha.
+    Tga,
+    /// Binary color pixmap (with the `image` feature), no alpha.
+    Ppm,
+}
+
 /// The formats this build writes, for error messages.
 #[cfg(feature = "image")]
 const FORMATS: &str = "png, bmp, tga, ppm";
 #[cfg(not(feature = "image"))]
 const FORMATS: &str = "png (build with the `image` feature for bmp, tga and ppm)";
 
-/// The format of `path` by its extension; an error names the extension and
-/// what this build writes instead.
-pub fn format_of(path: &Path) -> Result<Format, String> {
+/// Whether `path` means standard output.
+pub fn is_stdout(path: &Path) -> bool {
+    path.as_os_str() == "-"
+}
+
+/// The format `--format` names, or else the one of `path`'s extension (PNG
+/// for standard output and for no extension); an error names the extension
+/// and what this build writes instead.
+pub fn format_of(path: &Path, asked: Option<FormatArg>) -> Result<Format, String> {
+    if let Some(asked) = asked {
+        let ext = match asked {
+            FormatArg::Png => return Ok(Format::Png),
+            FormatArg::Bmp => "bmp",
+            FormatArg::Tga => "tga",
+            FormatArg::Ppm => "ppm",
+        };
+        return by_extension(ext)
+            .ok_or_else(|| format!("cannot write --format {ext}: this build writes {FORMATS}"));
+    }
+    if is_stdout(path) {
+        return Ok(Format::Png);
+    }
     let Some(ext) = path.extension().and_then(|e| e.to_str()) else {
         return Ok(Format::Png);
     };
+    by_extension(ext).ok_or_else(|| {
+        format!(
+            "cannot write --out {}: no encoder for .{ext}; this build writes {FORMATS}",
+            path.display()
+        )
+    })
+}
+
+fn by_extension(ext: &str) -> Option<Format> {
     if ext.eq_ignore_ascii_case("png") {
-        return Ok(Format::Png);
+        return Some(Format::Png);
     }
     #[cfg(feature = "image")]
     if let Some(format) = image::ImageFormat::from_extension(ext) {
@@ -37,41 +80,64 @@ pub fn format_of(path: &Path) -> Result<Format, String> {
         // write any of them as PAM.
         let offered = format != image::ImageFormat::Pnm || ext.eq_ignore_ascii_case("ppm");
         if offered && format.writing_enabled() {
-            return Ok(Format::Other(format));
+            return Some(Format::Other(format));
         }
     }
-    Err(format!(
-        "cannot write --out {}: no encoder for .{ext}; this build writes {FORMATS}",
-        path.display()
-    ))
+    None
 }
 
-/// Writes `width x height` packed pixels to `file` in `format`.
+/// Whether `format` keeps an alpha channel.
+pub fn has_alpha(format: Format) -> bool {
+    match format {
+        Format::Png => true,
+        #[cfg(feature = "image")]
+        Format::Other(format) => format != image::ImageFormat::Pnm,
+    }
+}
+
+/// Writes `width x height` packed pixels to `out` in `format`; `alpha`
+/// keeps their alpha channel where the format has one (else RGB, as
+/// opaque renders have always been written). PNG always keeps the
+/// pixels' alpha, 255 in opaque renders.
+#[cfg_attr(not(feature = "image"), allow(unused_variables))]
 pub fn write(
-    file: File,
+    out: impl Write,
     format: Format,
     width: u32,
     height: u32,
     pixels: &[u32],
+    alpha: bool,
 ) -> Result<(), String> {
-    let out = BufWriter::new(file);
+    let mut out = BufWriter::new(out);
     match format {
-        Format::Png => voxtrace::encode_png(out, width, height, pixels).map_err(|e| e.to_string()),
+        Format::Png => {
+            voxtrace::encode_png(&mut out, width, height, pixels).map_err(|e| e.to_string())?;
+        }
         #[cfg(feature = "image")]
         Format::Other(format) => {
             let rgba = voxtrace::to_rgba_image(width, height, pixels)
                 .ok_or("the image has fewer pixels than its size")?;
-            // Renders are opaque: RGB is what every offered format takes.
-            let rgb = image::DynamicImage::ImageRgba8(rgba).to_rgb8();
-            let mut out = out;
-            if format == image::ImageFormat::Pnm {
-                use image::codecs::pnm::{PnmEncoder, PnmSubtype, SampleEncoding};
-                let pixmap = PnmSubtype::Pixmap(SampleEncoding::Binary);
-                rgb.write_with_encoder(PnmEncoder::new(out).with_subtype(pixmap))
-                    .map_err(|e| e.to_string())
+            if alpha && has_alpha(Format::Other(format)) {
+                let mut bytes = std::io::Cursor::new(Vec::new());
+                rgba.write_to(&mut bytes, format)
+                    .map_err(|e| e.to_string())?;
+                out.write_all(bytes.get_ref()).map_err(|e| e.to_string())?;
             } else {
-                rgb.write_to(&mut out, format).map_err(|e| e.to_string())
+                // Opaque renders: RGB is what every offered format takes.
+                let rgb = image::DynamicImage::ImageRgba8(rgba).to_rgb8();
+                if format == image::ImageFormat::Pnm {
+                    use image::codecs::pnm::{PnmEncoder, PnmSubtype, SampleEncoding};
+                    let pixmap = PnmSubtype::Pixmap(SampleEncoding::Binary);
+                    rgb.write_with_encoder(PnmEncoder::new(&mut out).with_subtype(pixmap))
+                        .map_err(|e| e.to_string())?;
+                } else {
+                    let mut bytes = std::io::Cursor::new(Vec::new());
+                    rgb.write_to(&mut bytes, format)
+                        .map_err(|e| e.to_string())?;
+                    out.write_all(bytes.get_ref()).map_err(|e| e.to_string())?;
+                }
             }
         }
     }
+    out.flush().map_err(|e| e.to_string())
 }

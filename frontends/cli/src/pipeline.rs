@@ -8,7 +8,8 @@
 use std::time::{Duration, Instant};
 
 use clap::ValueEnum;
-use voxtrace::glam::Vec3;
+
+use crate::units::human_bytes;
 use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{
     render_parallel_with_progress, render_region, Camera, DenseScene, Error, Framebuffer, IAabb,
@@ -108,7 +109,14 @@ impl BuiltScene {
         threaded: bool,
     ) -> Result<(BuiltScene, Duration), String> {
         let started = Instant::now();
-        let describe = |e: Error| format!("cannot build the {} scene: {e}", backend.name());
+        let describe = |e: Error| match e {
+            Error::OutOfMemory { bytes } => format!(
+                "cannot build the {} scene: out of memory: could not allocate {}",
+                backend.name(),
+                human_bytes(bytes as u128)
+            ),
+            e => format!("cannot build the {} scene: {e}", backend.name()),
+        };
         let scene = match backend {
             Backend::Dense => {
                 let built = if threaded {
@@ -125,8 +133,9 @@ impl BuiltScene {
                             .map(|&s| u128::from(s.unsigned_abs()))
                             .product();
                         format!(
-                            "the dense array for this scene needs {bytes} bytes (one per voxel), \
-                             more than can be allocated; try --backend octree"
+                            "the dense array for this scene needs {} (one per voxel), \
+                             more than can be allocated; try --backend octree",
+                            human_bytes(bytes)
                         )
                     }
                     e => describe(e),
@@ -223,36 +232,4 @@ fn render<S: Scene + Sync>(
         rays,
         elapsed: started.elapsed(),
     })
-}
-
-/// A camera position and target that frame `bounds` from a three-quarter
-/// view above: every corner of the box inside the field of view (vertical
-/// `vertical_fov` degrees, width over height `aspect`), with a small margin.
-#[must_use]
-pub fn framing(bounds: IAabb, vertical_fov: f32, aspect: f32) -> (Vec3, Vec3) {
-    let (min, max) = (bounds.min.as_vec3(), bounds.max.as_vec3());
-    let center = (min + max) * 0.5;
-    // From -x, -z and above: the side MagicaVoxel scenes usually open to.
-    let back = Vec3::new(-1.0, 0.8, -1.3).normalize();
-    let forward = -back;
-    let right = forward.cross(Vec3::Y).normalize();
-    let up = right.cross(forward);
-    let tan_v = (vertical_fov * 0.5).to_radians().tan();
-    let tan_h = tan_v * aspect;
-    // A corner at offset o fits when its sideways extent over its depth
-    // (distance - o . back) stays under the half-angle's tangent.
-    let distance = (0..8)
-        .map(|k| {
-            let corner = Vec3::new(
-                if k & 1 == 0 { min.x } else { max.x },
-                if k & 2 == 0 { min.y } else { max.y },
-                if k & 4 == 0 { min.z } else { max.z },
-            );
-            let o = corner - center;
-            let need_h = o.dot(right).abs() / tan_h;
-            let need_v = o.dot(up).abs() / tan_v;
-            o.dot(back) + need_h.max(need_v)
-        })
-        .fold(0.0f32, f32::max);
-    (center + back * (distance * 1.05), center)
 }

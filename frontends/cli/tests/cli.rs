@@ -216,7 +216,9 @@ fn bad_input_exits_2_with_one_line_naming_the_value() {
         (&["--position", "1,x,3"], "x"),
         (&["--fov", "180"], "field of view"),
         (&["--position", "5,5,5", "--lookat", "5,5,5"], "coincide"),
-        (&["--position", "0,50,0"], "parallel"),
+        // Straight down renders (a map); only an explicit --up along the
+        // view is refused.
+        (&["--position", "0,150,0", "--up", "0,1,0"], "parallel"),
         (&["--region", "300,0,64,64"], "300,0,64,64"),
         (&["--threads", "0"], "0"),
         (&["--threads", "-3"], "-3"),

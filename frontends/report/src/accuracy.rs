@@ -15,7 +15,7 @@ use voxtrace_cli::on_threads;
 
 use crate::common_args::Output;
 use crate::geometric;
-use crate::measure::{cpu_name, format_ms, median_of};
+use crate::measure::{count_of, cpu_name, format_ms, median_of};
 use crate::plot::{Chart, Line, Series};
 use plotters::chart::SeriesLabelPosition;
 
@@ -222,10 +222,11 @@ fn table(
 ) -> String {
     let (samples, ao, _) = REFERENCE;
     let mut md = String::new();
+    let runs_text = count_of(runs, "run");
     let _ = writeln!(
         md,
         "Measured by `{command}` on {} with {threads} threads: terrain seed {SEED}, \
-         size {SIZE} (octree), {width}x{height}, median of {runs} runs. \
+         size {SIZE} (octree), {width}x{height}, median of {runs_text}. \
          Error against a reference of {samples} samples per pixel with {ao} occlusion \
          rays each and shadows ({}).\n",
         cpu_name(),

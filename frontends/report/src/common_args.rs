@@ -8,8 +8,9 @@ pub struct Output {
     /// Worker threads, as the CLI's --threads [default: all cores].
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
     pub threads: Option<u16>,
-    /// Folder for the report's markdown table and PNG plot.
-    #[arg(long, default_value = "docs/report")]
+    /// Folder for the report's markdown table and PNG plot (the README's
+    /// figures are updated only when asked: `--out-dir docs/report`).
+    #[arg(long, default_value = "target/report")]
     pub out_dir: PathBuf,
     /// TrueType font for the plot's text [default: a system sans-serif].
     #[arg(long)]

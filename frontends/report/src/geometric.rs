@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 
 use voxtrace::{Camera, CameraSettings, DenseScene, IAabb, Ray, Scene, VoxelGenerator};
 
-use crate::measure::{format_ms, median_ms};
+use crate::measure::{count_of, format_ms, median_ms};
 use crate::naive_dda::{HitCell, NaiveGrid};
 
 /// The seed paper's scene sizes, and the ones `--quick` keeps.
@@ -173,6 +173,7 @@ pub fn section(
     runs: usize,
 ) -> String {
     let mut md = String::new();
+    let runs_text = count_of(runs, "run");
     let _ = writeln!(
         md,
         "\n### What exactness costs: the exact walk against a float-accumulating one\n\n\
@@ -183,7 +184,7 @@ pub fn section(
          strict `<` between axes, slab-test entry; without the paper's wrap-around), over a \
          byte grid of the same terrain cut to the box around its solid voxels, the one box \
          the exact walk clips itself to. The textbook walk lives in the report \
-         (`frontends/report/src/naive_dda.rs`) only; it is no backend. Median of {runs} runs \
+         (`frontends/report/src/naive_dda.rs`) only; it is no backend. Median of {runs_text} \
          after a warm-up, the two alternating; ratio = exact / naive (above 1: the naive \
          walk is faster). A pixel differs when its hit voxel differs, a hit against a miss \
          included; \"face only\" counts the same voxel entered through another face.\n"

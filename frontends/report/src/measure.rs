@@ -72,6 +72,16 @@ pub fn format_bytes(bytes: u64) -> String {
     out
 }
 
+/// `count` followed by `word`, plural unless the count is 1: "1 run", "3 runs".
+#[must_use]
+pub fn count_of(count: usize, word: &str) -> String {
+    if count == 1 {
+        format!("{count} {word}")
+    } else {
+        format!("{count} {word}s")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -89,5 +99,12 @@ mod tests {
         assert_eq!(format_bytes(999), "999");
         assert_eq!(format_bytes(1000), "1,000");
         assert_eq!(format_bytes(125_000_768), "125,000,768");
+    }
+
+    #[test]
+    fn counts_take_their_plural() {
+        assert_eq!(super::count_of(1, "run"), "1 run");
+        assert_eq!(super::count_of(3, "run"), "3 runs");
+        assert_eq!(super::count_of(0, "run"), "0 runs");
     }
 }

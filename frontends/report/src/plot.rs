@@ -6,6 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
+use plotters::coord::combinators::BindKeyPoints;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
@@ -112,6 +113,30 @@ fn plot_error<E: std::fmt::Display>(e: E) -> String {
     format!("cannot draw the plot: {e}")
 }
 
+/// The x axis' labelled values: every x of the data when there are few
+/// (so each measured size has its label), else 1, 2 and 5 times the powers
+/// of ten inside `range`.
+fn x_ticks(values: impl Iterator<Item = f64>, range: &std::ops::Range<f64>) -> Vec<f64> {
+    let mut xs: Vec<f64> = values.filter(|v| *v > 0.0 && v.is_finite()).collect();
+    xs.sort_by(f64::total_cmp);
+    xs.dedup();
+    if !xs.is_empty() && xs.len() <= 12 {
+        return xs;
+    }
+    let mut ticks = Vec::new();
+    let mut decade = 10f64.powf(range.start.max(f64::MIN_POSITIVE).log10().floor());
+    while decade <= range.end && ticks.len() < 64 {
+        for m in [1.0, 2.0, 5.0] {
+            let t = m * decade;
+            if range.contains(&t) {
+                ticks.push(t);
+            }
+        }
+        decade *= 10.0;
+    }
+    ticks
+}
+
 /// The range covering `values` padded by a fifth of a decade each side.
 fn log_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
     let (lo, hi) = values
@@ -138,7 +163,12 @@ fn draw_chart(
         .margin(12)
         .x_label_area_size(44)
         .y_label_area_size(72)
-        .build_cartesian_2d(xs.log_scale(), ys.log_scale())
+        .build_cartesian_2d(
+            xs.clone()
+                .log_scale()
+                .with_key_points(x_ticks(points().map(|p| p.0), &xs)),
+            ys.log_scale(),
+        )
         .map_err(plot_error)?;
     context
         .configure_mesh()
@@ -163,10 +193,21 @@ fn draw_chart(
         } else {
             context.draw_series(LineSeries::new(series.points.iter().copied(), style))
         };
+        // The legend draws each line as the chart does: dashed lines as
+        // two dashes, solid ones whole.
+        let gap = if series.line == Line::Dashed {
+            (8, 13)
+        } else {
+            (20, 20)
+        };
         drawn
             .map_err(plot_error)?
             .label(&series.name)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+            .legend(move |(x, y)| {
+                EmptyElement::at((x, y))
+                    + PathElement::new(vec![(0, 0), (gap.0, 0)], style)
+                    + PathElement::new(vec![(gap.1, 0), (20, 0)], style)
+            });
         context
             .draw_series(
                 series
@@ -193,5 +234,60 @@ fn short_number(v: f64) -> String {
     } else {
         let text = format!("{v:.3}");
         text.trim_end_matches('0').trim_end_matches('.').to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_measured_size_gets_its_label() {
+        let sizes = [50.0, 100.0, 250.0, 500.0, 1000.0];
+        let range = log_range(sizes.iter().copied());
+        assert_eq!(x_ticks(sizes.iter().copied(), &range), sizes);
+        // Many values: 1, 2, 5 per decade inside the range.
+        let many: Vec<f64> = (1..40).map(|i| f64::from(i) * 3.0).collect();
+        let range = log_range(many.iter().copied());
+        let ticks = x_ticks(many.iter().copied(), &range);
+        assert!(
+            ticks.contains(&10.0) && ticks.contains(&20.0) && ticks.contains(&50.0),
+            "{ticks:?}"
+        );
+        assert!(ticks.iter().all(|t| range.contains(t)));
+    }
+
+    #[test]
+    fn a_chart_with_a_dashed_series_draws() {
+        if load_font(None).is_err() {
+            println!("skipped: no system font for the plot");
+            return;
+        }
+        let points = vec![(50.0, 1.0), (100.0, 3.0), (250.0, 9.0)];
+        let chart = Chart {
+            title: "t".into(),
+            x_label: "size".into(),
+            y_label: "ms".into(),
+            series: vec![
+                Series {
+                    name: "ours".into(),
+                    points: points.clone(),
+                    color: 0,
+                    line: Line::Thick,
+                },
+                Series {
+                    name: "paper".into(),
+                    points,
+                    color: 1,
+                    line: Line::Dashed,
+                },
+            ],
+            legend: SeriesLabelPosition::UpperLeft,
+        };
+        let path = std::env::temp_dir().join(format!("voxtrace-plot-{}.png", std::process::id()));
+        draw(&path, &[chart]).unwrap();
+        assert!(std::fs::metadata(&path).unwrap().len() > 1000);
+        let _ = std::fs::copy(&path, std::env::temp_dir().join("voxtrace-plot-last.png"));
+        let _ = std::fs::remove_file(&path);
     }
 }

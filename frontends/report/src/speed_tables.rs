@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use plotters::chart::SeriesLabelPosition;
 use voxtrace_cli::Backend;
 
-use crate::measure::{cpu_name, format_bytes, format_ms};
+use crate::measure::{count_of, cpu_name, format_bytes, format_ms};
 use crate::plot::{Chart, Line, Series};
 use crate::speed_data::{
     Measured, View, FULL_HD, PAPER_CORES, PAPER_MS, SCALING_SIZES, TABLE_SIZES, UHD_8K,
@@ -38,10 +38,11 @@ pub(crate) fn tables(
     command: &str,
 ) -> String {
     let mut md = String::new();
+    let runs_text = count_of(runs, "run");
     let _ = writeln!(
         md,
         "Measured by `{command}` on {} with {threads} threads: seed {seed}, \
-         median of {runs} runs after a warm-up, the CLI's build and render path \
+         median of {runs_text} after a warm-up, the CLI's build and render path \
          (parallel build, `render_parallel`, frame allocation included).\n",
         cpu_name()
     );

@@ -20,7 +20,7 @@ use voxtrace::glam::Vec3;
 use voxtrace::CameraSettings;
 use voxtrace_cli::Backend;
 
-use crate::measure::format_ms;
+use crate::measure::{count_of, format_ms};
 use crate::speed_data::{Measured, View};
 
 /// Options of the comparison.
@@ -228,12 +228,13 @@ fn ratio_cell(theirs: f64, ours: f64) -> String {
 #[must_use]
 pub fn table(rows: &[VsRow], theirs: &Path, threads: usize, runs: usize) -> String {
     let mut md = String::new();
+    let runs_text = count_of(runs, "run");
     let _ = writeln!(
         md,
         "Against `{}`: both binaries run as separate processes with the same flags \
          (`--backend --size --seed --width --height --threads {threads} --position --stats`), \
          one build and one frame per process, timed by their own `--stats` \
-         (`build_ms`, `render_ms`; PNG encoding not included); median of {runs} runs each \
+         (`build_ms`, `render_ms`; PNG encoding not included); median of {runs_text} each \
          after one warm-up each, alternating ours and theirs. Speedup vs = their median / \
          ours (above 1: this revision is faster). These process figures are not the \
          in-process figures above.\n",

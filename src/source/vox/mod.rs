@@ -163,6 +163,23 @@ impl VoxModel {
         self.voxels
     }
 
+    /// The position of every solid voxel, chunk by chunk (in no particular
+    /// order): for framing a camera on the voxels themselves.
+    pub fn positions(&self) -> impl Iterator<Item = IVec3> + '_ {
+        self.index.iter().flat_map(move |(&key, &slot)| {
+            let chunk = &self.chunks[slot as usize];
+            (0..CHUNK_VOXELS).filter(|&i| chunk[i] != 0).map(move |i| {
+                let i = i as i32;
+                let local = IVec3::new(
+                    i & (CHUNK - 1),
+                    (i >> CHUNK_LOG) & (CHUNK - 1),
+                    i >> (2 * CHUNK_LOG),
+                );
+                (key << CHUNK_LOG) + local
+            })
+        })
+    }
+
     /// The chunk holding `pos`, if any voxel is in it.
     fn chunk(&self, pos: IVec3) -> Option<&[u8; CHUNK_VOXELS]> {
         let i = *self.index.get(&(pos >> CHUNK_LOG))?;

@@ -1,0 +1,175 @@
+//! Numbered frames: `--frames N`, `--frame-range A-B` and the `#` run in an
+//! output path that becomes the frame number (`spin_####.png` ->
+//! `spin_0001.png`), as Blender names its frames. Frames count from 1.
+
+use std::ops::RangeInclusive;
+use std::path::{Path, PathBuf};
+
+use voxtrace::glam::Vec3;
+use voxtrace::CameraSettings;
+
+/// A run of frames `first..=last`, 1-based.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FrameRange {
+    /// First frame, at least 1.
+    pub first: u32,
+    /// Last frame, at least `first`.
+    pub last: u32,
+}
+
+impl FrameRange {
+    /// Every frame of an animation of `frames` frames.
+    #[must_use]
+    pub fn all(frames: u32) -> FrameRange {
+        FrameRange {
+            first: 1,
+            last: frames.max(1),
+        }
+    }
+
+    /// The frames, in order.
+    #[must_use]
+    pub fn frames(self) -> RangeInclusive<u32> {
+        self.first..=self.last
+    }
+
+    /// How many frames the range holds.
+    #[must_use]
+    pub fn len(self) -> u32 {
+        self.last - self.first + 1
+    }
+
+    /// Always false: a range holds at least one frame.
+    #[must_use]
+    pub fn is_empty(self) -> bool {
+        false
+    }
+
+    /// An error unless the range lies within an animation of `frames`
+    /// frames.
+    pub fn check_within(self, frames: u32) -> Result<(), String> {
+        if self.last > frames {
+            return Err(format!(
+                "--frame-range {}-{} goes past the last of --frames {frames}",
+                self.first, self.last
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Parses `A-B` (or a single frame `A`), 1-based, `A <= B`.
+pub fn parse_frame_range(s: &str) -> Result<FrameRange, String> {
+    let (a, b) = s.split_once('-').unwrap_or((s, s));
+    let number = |t: &str| {
+        t.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|&n| n >= 1)
+            .ok_or_else(|| format!("'{s}' is not a range of frames A-B (whole numbers from 1)"))
+    };
+    let (first, last) = (number(a)?, number(b)?);
+    if first > last {
+        return Err(format!("'{s}' ends before it starts"));
+    }
+    Ok(FrameRange { first, last })
+}
+
+/// `pattern` with its last run of `#` in the file name replaced by `frame`,
+/// zero-padded to the run's length (longer numbers are written whole).
+///
+/// # Errors
+/// When the file name has no `#`.
+pub fn frame_path(pattern: &Path, frame: u32) -> Result<PathBuf, String> {
+    let name = pattern
+        .file_name()
+        .and_then(|n| n.to_str())
+        .filter(|n| n.contains('#'))
+        .ok_or_else(|| {
+            format!(
+                "--out {} needs a run of # for the frame number (for example spin_####.png)",
+                pattern.display()
+            )
+        })?;
+    let end = name.rfind('#').map_or(0, |i| i + 1);
+    let start = name[..end].trim_end_matches('#').len();
+    let width = end - start;
+    let named = format!("{}{frame:0width$}{}", &name[..start], &name[end..]);
+    Ok(pattern.with_file_name(named))
+}
+
+/// Frame `frame` (1-based) of a turntable of `frames` frames: `base`'s
+/// camera turned about the vertical axis through its target by
+/// `360 * (frame - 1) / frames` degrees. Frame 1 is `base` itself; each
+/// frame depends only on its number, so any range renders the same bytes
+/// as the full run.
+#[must_use]
+pub fn turntable(base: CameraSettings, frame: u32, frames: u32) -> CameraSettings {
+    if frame <= 1 || frames == 0 {
+        return base;
+    }
+    let turns = f64::from(frame - 1) / f64::from(frames);
+    let angle = turns * std::f64::consts::TAU;
+    let (sin, cos) = angle.sin_cos();
+    let offset = base.lookfrom - base.lookat;
+    let (x, z) = (f64::from(offset.x), f64::from(offset.z));
+    // Positive angles turn the camera from +z toward +x, as a yaw does.
+    let turned = Vec3::new(
+        (x * cos + z * sin) as f32,
+        offset.y,
+        (z * cos - x * sin) as f32,
+    );
+    CameraSettings {
+        lookfrom: base.lookat + turned,
+        ..base
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ranges_parse_and_reject_garbage() {
+        assert_eq!(
+            parse_frame_range("3-5"),
+            Ok(FrameRange { first: 3, last: 5 })
+        );
+        assert_eq!(parse_frame_range("7"), Ok(FrameRange { first: 7, last: 7 }));
+        for bad in ["0-3", "5-3", "a-b", "-3", "3-", "", "1-2-3"] {
+            assert!(parse_frame_range(bad).is_err(), "{bad}");
+        }
+        assert!(FrameRange { first: 3, last: 9 }.check_within(8).is_err());
+        assert!(FrameRange { first: 3, last: 8 }.check_within(8).is_ok());
+    }
+
+    #[test]
+    fn hashes_become_padded_frame_numbers() {
+        let p = |s: &str, f| frame_path(Path::new(s), f).map(|p| p.display().to_string());
+        assert_eq!(p("out/spin_####.png", 7).unwrap(), "out/spin_0007.png");
+        assert_eq!(p("a#b#.png", 12).unwrap(), "a#b12.png");
+        assert_eq!(p("f##.png", 123).unwrap(), "f123.png");
+        assert_eq!(p("dir#/f#", 3).unwrap(), "dir#/f3");
+        assert!(p("dir#/spin.png", 1).is_err());
+    }
+
+    #[test]
+    fn a_turntable_comes_back_around() {
+        let base = CameraSettings {
+            lookfrom: Vec3::new(0.0, 5.0, 10.0),
+            lookat: Vec3::new(0.0, 5.0, 0.0),
+            ..CameraSettings::default()
+        };
+        assert_eq!(turntable(base, 1, 4), base);
+        let quarter = turntable(base, 2, 4).lookfrom;
+        assert!(
+            (quarter - Vec3::new(10.0, 5.0, 0.0)).length() < 1e-5,
+            "{quarter}"
+        );
+        let half = turntable(base, 3, 4).lookfrom;
+        assert!(
+            (half - Vec3::new(0.0, 5.0, -10.0)).length() < 1e-5,
+            "{half}"
+        );
+    }
+}

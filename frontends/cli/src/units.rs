@@ -1,0 +1,36 @@
+//! Numbers for people: byte counts shortened with their exact figure.
+
+/// `bytes` as `512 GiB (549755813888 bytes)`; below 1 KiB just the bytes.
+#[must_use]
+pub fn human_bytes(bytes: u128) -> String {
+    const UNITS: [&str; 6] = ["KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
+    if bytes < 1024 {
+        return format!("{bytes} bytes");
+    }
+    let mut value = bytes as f64 / 1024.0;
+    let mut unit = 0;
+    while value >= 1024.0 && unit + 1 < UNITS.len() {
+        value /= 1024.0;
+        unit += 1;
+    }
+    let shown = if value < 10.0 {
+        format!("{value:.1}")
+    } else {
+        format!("{value:.0}")
+    };
+    format!("{shown} {} ({bytes} bytes)", UNITS[unit])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::human_bytes;
+
+    #[test]
+    fn byte_counts_read_short_and_keep_the_exact_figure() {
+        assert_eq!(human_bytes(549_755_813_888), "512 GiB (549755813888 bytes)");
+        assert_eq!(human_bytes(1536), "1.5 KiB (1536 bytes)");
+        assert_eq!(human_bytes(1000), "1000 bytes");
+        assert_eq!(human_bytes(8_000_000), "7.6 MiB (8000000 bytes)");
+        assert!(human_bytes(u128::MAX).ends_with(&format!("({} bytes)", u128::MAX)));
+    }
+}

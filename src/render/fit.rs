@@ -1,0 +1,174 @@
+//! Framing: a camera that shows a set of boxes (a model's voxels, a
+//! scene's bounds) whole, centered, filling a given share of the frame.
+//!
+//! The fit is exact for the boxes given, not for a box around them: each
+//! edge of the image is a plane through the camera (perspective) or along
+//! the view (orthographic), and a plane is pushed out until every box lies
+//! on its inner side; the maximum of a linear function over a box is at a
+//! corner, so each box costs a few dot products.
+
+use glam::Vec3;
+
+use crate::error::Error;
+use crate::math::tan32;
+use crate::render::camera::CameraSettings;
+use crate::render::view::{basis, unit, Projection};
+
+/// Accumulates what a camera looking along one direction needs to know of
+/// the boxes it must show ([`Framer::add_box`]), then places it
+/// ([`Framer::settings`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Framer {
+    base: CameraSettings,
+    right: Vec3,
+    up: Vec3,
+    forward: Vec3,
+    /// Tangents of the half angles, shrunk by the fill factor.
+    tan_h: f32,
+    tan_v: f32,
+    aspect: f32,
+    fill: f32,
+    /// Maxima over the boxes of: the four perspective side planes
+    /// (right, left, top, bottom), then `+-right`, `+-up`, `-+forward`.
+    max: [f32; 10],
+}
+
+impl Framer {
+    /// A framer for `base`'s image size, field of view, up vector and
+    /// projection, looking from the target toward `-toward_camera`
+    /// (`toward_camera` points from the scene to the camera, need not be
+    /// unit), the boxes filling `fill` (in `(0, 1]`) of the frame's
+    /// tighter side.
+    ///
+    /// Fails with [`Error::InvalidCamera`] for a zero direction, a bad
+    /// field of view or image size, an up vector parallel to the view
+    /// without the fallback, or a fill outside `(0, 1]`.
+    pub fn new(base: CameraSettings, toward_camera: Vec3, fill: f32) -> Result<Framer, Error> {
+        let invalid = |reason| Error::InvalidCamera { reason };
+        if base.width == 0 || base.height == 0 {
+            return Err(invalid("width and height must be at least 1"));
+        }
+        if !(base.vertical_fov > 0.0 && base.vertical_fov < 180.0) {
+            return Err(invalid(
+                "vertical field of view must be in (0, 180) degrees",
+            ));
+        }
+        if !(fill > 0.0 && fill <= 1.0) {
+            return Err(invalid("the framing's fill must be in (0, 1]"));
+        }
+        if !toward_camera.is_finite() || !base.cam_up.is_finite() {
+            return Err(invalid("position, target and up vector must be finite"));
+        }
+        let forward = -unit(toward_camera).ok_or(invalid("the view direction is zero"))?;
+        let (right, up) = basis(forward, base.cam_up, base.up_fallback)?;
+        let aspect = base.width as f32 / base.height as f32;
+        let tan_v = tan32(base.vertical_fov.to_radians() / 2.0) * fill;
+        Ok(Framer {
+            base,
+            right,
+            up,
+            forward,
+            tan_h: tan_v * aspect,
+            tan_v,
+            aspect,
+            fill,
+            max: [f32::NEG_INFINITY; 10],
+        })
+    }
+
+    /// The functionals whose maxima the fit needs, as world vectors.
+    fn functionals(&self) -> [Vec3; 10] {
+        let (r, u, f) = (self.right, self.up, self.forward);
+        [
+            r - f * self.tan_h,
+            -r - f * self.tan_h,
+            u - f * self.tan_v,
+            -u - f * self.tan_v,
+            r,
+            -r,
+            u,
+            -u,
+            -f,
+            f,
+        ]
+    }
+
+    /// Adds the box `[min, max]` (a voxel is `[p, p + 1]`).
+    pub fn add_box(&mut self, min: Vec3, max: Vec3) {
+        let functionals = self.functionals();
+        for (m, a) in self.max.iter_mut().zip(functionals) {
+            // A linear function is largest over a box at the corner that is
+            // largest along each axis.
+            let corner = Vec3::select(a.cmpge(Vec3::ZERO), max, min);
+            *m = m.max(corner.dot(a));
+        }
+    }
+
+    /// Whether any box was added.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.max[8] == f32::NEG_INFINITY
+    }
+
+    /// The fitted camera: `base` with the position and target (on the
+    /// boxes' middle along the view) that center the boxes, and for an
+    /// orthographic `base` the height that fits them. `None` before any box
+    /// was added or when the boxes' extent is not finite.
+    #[must_use]
+    pub fn settings(&self) -> Option<CameraSettings> {
+        if self.is_empty() || !self.max.iter().all(|m| m.is_finite()) {
+            return None;
+        }
+        let [r, l, t, b, a_max, a_min_neg, c_max, c_min_neg, b_min_neg, b_max] = self.max;
+        let near = -b_min_neg; // the closest any box comes along the view
+        let (a, c, depth, projection) = match self.base.projection {
+            Projection::Perspective => {
+                // The tight apex for each pair of side planes; the farther
+                // back one holds all four.
+                let depth_h = -(r + l) / (2.0 * self.tan_h);
+                let depth_v = -(t + b) / (2.0 * self.tan_v);
+                let depth = depth_h.min(depth_v).min(near - 0.5);
+                ((r - l) / 2.0, (t - b) / 2.0, depth, Projection::Perspective)
+            }
+            Projection::Orthographic { .. } => {
+                let height = ((c_max + c_min_neg) / self.fill)
+                    .max((a_max + a_min_neg) / self.aspect / self.fill)
+                    .max(f32::MIN_POSITIVE);
+                let projection = Projection::Orthographic { height };
+                (
+                    (a_max - a_min_neg) / 2.0,
+                    (c_max - c_min_neg) / 2.0,
+                    near - 1.0,
+                    projection,
+                )
+            }
+        };
+        let lookfrom = self.right * a + self.up * c + self.forward * depth;
+        // The target straight ahead, as deep as the middle of the boxes.
+        let reach = ((near + b_max) / 2.0 - depth).max(1.0);
+        let lookat = lookfrom + self.forward * reach;
+        let settings = CameraSettings {
+            lookfrom,
+            lookat,
+            projection,
+            ..self.base
+        };
+        (lookfrom.is_finite() && lookat.is_finite()).then_some(settings)
+    }
+
+    /// The orthographic height that shows every box with the image's
+    /// middle on the line through `point` along the view (for a camera
+    /// placed by hand), with the fill factor's margin.
+    #[must_use]
+    pub fn ortho_height_around(&self, point: Vec3) -> Option<f32> {
+        if self.is_empty() {
+            return None;
+        }
+        let [_, _, _, _, a_max, a_min_neg, c_max, c_min_neg, _, _] = self.max;
+        let (pa, pc) = (point.dot(self.right), point.dot(self.up));
+        let half_a = (a_max - pa).max(pa + a_min_neg);
+        let half_c = (c_max - pc).max(pc + c_min_neg);
+        let height = 2.0 * half_c.max(half_a / self.aspect) / self.fill;
+        (height.is_finite() && height > 0.0).then_some(height)
+    }
+}
