@@ -12,7 +12,8 @@ use clap::Parser;
 use voxtrace::{Camera, RenderOptions};
 use voxtrace_cli::part::{fnv1a64, settings_text, write_part, Placement};
 use voxtrace_cli::stitch::{list, stitch, write_atomically};
-use voxtrace_cli::tiles::{tile_name, Grid, TaskIndex};
+use voxtrace_cli::tiles::{frames_for_task, tile_name, Grid, TaskIndex};
+use voxtrace_cli::FrameRange;
 
 use crate::args::Args;
 use crate::output;
@@ -31,6 +32,40 @@ pub struct TileArgs {
     /// it from an environment variable (env:SLURM_ARRAY_TASK_ID).
     #[arg(long, value_name = "I|env:VAR", value_parser = TaskIndex::parse)]
     pub tile_index: Option<TaskIndex>,
+
+    /// Split the --frames animation into this many runs of consecutive
+    /// frames (differing by at most one frame) and render only the run
+    /// --task-index picks: one command line for every task of an array.
+    #[arg(long, value_name = "T", requires = "task_index")]
+    pub tasks: Option<u32>,
+
+    /// The run of frames to render with --tasks, from 0, or env:VAR
+    /// (env:SLURM_ARRAY_TASK_ID).
+    #[arg(long, value_name = "I|env:VAR", value_parser = TaskIndex::parse,
+          requires = "tasks", conflicts_with = "frame_range")]
+    pub task_index: Option<TaskIndex>,
+}
+
+/// The frames `--tasks T --task-index I` pick out of an animation of
+/// `frames` (`None` without those flags).
+///
+/// # Errors
+/// One line: the flags without `--frames`, more tasks than frames, or an
+/// index out of range or unset (naming the range).
+pub fn task_frames(args: &Args, frames: Option<u32>) -> Result<Option<FrameRange>, String> {
+    let (Some(tasks), Some(index)) = (args.farm.tasks, &args.farm.task_index) else {
+        return Ok(None);
+    };
+    let frames = frames.ok_or("--tasks splits an animation: it needs --frames N")?;
+    frames_for_task(0, tasks, frames)?; // the task count first, then the index
+    let what = format!("the {tasks} tasks");
+    let index = index.resolve("--task-index", tasks, &what, |var| std::env::var(var).ok())?;
+    let run = frames_for_task(index, tasks, frames)?;
+    // Frames count from 1.
+    Ok(Some(FrameRange {
+        first: run.start + 1,
+        last: run.end,
+    }))
 }
 
 /// One tile to render: where it belongs, what decides its pixels, and

@@ -147,7 +147,10 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     };
     let settings = camera_settings(args, &stage)?;
     let frames = args.frames.unwrap_or(1);
-    let range = args.frame_range.unwrap_or(FrameRange::all(frames));
+    let range = match farm::task_frames(args, args.frames)? {
+        Some(range) => range,
+        None => args.frame_range.unwrap_or(FrameRange::all(frames)),
+    };
     range.check_within(frames)?;
     // Every frame's camera, checked before anything is built.
     let cameras = range

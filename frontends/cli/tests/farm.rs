@@ -355,3 +355,50 @@ fn bad_farm_arguments_exit_2_naming_the_range() {
         help.status.success() && String::from_utf8_lossy(&help.stdout).contains("--allow-partial")
     );
 }
+
+/// `--frames N --tasks T --task-index I` renders task I's run of frames:
+/// over all tasks every frame exactly once, each byte-identical to the
+/// frame of one full run; bad task flags are one line naming the range.
+#[test]
+fn tasks_split_an_animation_into_runs_of_frames() {
+    let dir = scratch("tasks");
+    let full = dir.join("full");
+    let parts = dir.join("parts");
+    std::fs::create_dir_all(&full).unwrap();
+    std::fs::create_dir_all(&parts).unwrap();
+    let pattern = |d: &Path| d.join("spin_##.png").to_str().unwrap().to_string();
+    let full_out = pattern(&full);
+    let mut args = SCENE.to_vec();
+    args.extend(["--frames", "7", "--threads", "1", "--out", &full_out]);
+    ok(&voxtrace(&args, &[]));
+    let parts_out = pattern(&parts);
+    for task in 0..3 {
+        let mut args = SCENE.to_vec();
+        args.extend(["--frames", "7", "--tasks", "3", "--out", &parts_out]);
+        args.extend(["--task-index", "env:TASK"]);
+        ok(&voxtrace(&args, &[("TASK", &task.to_string())]));
+    }
+    let mut written: Vec<_> = std::fs::read_dir(&parts)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    written.sort();
+    let expected: Vec<String> = (1..=7).map(|k| format!("spin_{k:02}.png")).collect();
+    assert_eq!(written, expected);
+    for name in &expected {
+        let a = std::fs::read(full.join(name)).unwrap();
+        let b = std::fs::read(parts.join(name)).unwrap();
+        assert!(a == b, "{name} differs from the full run's");
+    }
+    let mut args = SCENE.to_vec();
+    args.extend(["--frames", "7", "--tasks", "3", "--task-index", "3"]);
+    args.extend(["--out", &parts_out]);
+    refused(&voxtrace(&args, &[]), &["--task-index 3", "0 to 2"]);
+    let mut args = SCENE.to_vec();
+    args.extend(["--frames", "2", "--tasks", "3", "--task-index", "0"]);
+    args.extend(["--out", &parts_out]);
+    refused(&voxtrace(&args, &[]), &["3 tasks for 2 frames"]);
+    let mut args = SCENE.to_vec();
+    args.extend(["--tasks", "3", "--task-index", "0"]);
+    refused(&voxtrace(&args, &[]), &["--frames"]);
+}
