@@ -26,6 +26,22 @@ const BEFORE: Key = Key {
     axis: 0,
 };
 
+/// `(floor(v), ceil(v))` per lane for `|v| < 2^22`, without libm's
+/// software rounding: adding and subtracting 1.5 * 2^23 rounds to the
+/// nearest integer exactly (round-to-nearest is IEEE's default on every
+/// target), and one compare corrects it. The same values as `floor` and
+/// `ceil`, but for the sign of a zero, which no use below can tell.
+#[inline]
+fn floor_and_ceil(v: Vec3A) -> (Vec3A, Vec3A) {
+    const ROUND: f32 = 12_582_912.0; // 1.5 * 2^23
+    let nearest = (v + ROUND) - ROUND;
+    let one = |mask: BVec3A| Vec3A::select(mask, Vec3A::ONE, Vec3A::ZERO);
+    (
+        nearest - one(nearest.cmpgt(v)),
+        nearest + one(nearest.cmplt(v)),
+    )
+}
+
 /// Where a walk starts: its cell, the axes it moves along and those of
 /// them it moves down, the crossing times of the cell's exit planes and
 /// the key it entered the cell by.
@@ -75,10 +91,10 @@ impl Entry {
             return None;
         }
         let (d, inv) = (Vec3A::from(ray.dir()), Vec3A::from(ray.inv_dir()));
-        let floor = o.floor();
+        let (floor, ceil) = floor_and_ceil(o);
         let moving = d.cmpne(Vec3A::ZERO) & inv.is_finite_mask();
         let down = moving & d.cmplt(Vec3A::ZERO);
-        let cell = Vec3A::select(down, o.ceil() - 1.0, floor);
+        let cell = Vec3A::select(down, ceil - 1.0, floor);
         let exit = Vec3A::select(down, cell, cell + 1.0);
         let next_t = Vec3A::select(moving, (exit - o) * inv, Vec3A::INFINITY);
         let on_plane = (moving & floor.cmpeq(o)).bitmask();
