@@ -159,9 +159,6 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let (region_lo, region_hi) = (region.min - min, region.max - min);
         let nodes = self.nodes.as_ref();
         let root_log = self.root_size.trailing_zeros();
-        // path[d] (1 <= d <= depth): index of the node at depth d holding
-        // the position, whose cube has side 2^(root_log - d); `node` is the
-        // one at `depth` itself.
         // The position: the ray is, at `key`, in the cube of side
         // 2^known_log at `corner` (relative to `min`, where every cube of
         // the tree starts at a multiple of its side).
@@ -169,6 +166,10 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let mut corner = walk.cell() - min;
         let mut known_log = 0;
         let mut steps = 0;
+        // path[d] (1 <= d <= depth): index of the node at depth d holding
+        // the position, whose cube has side 2^(root_log - d); `node` is the
+        // one at `depth` itself. The descent begins where the memory knows
+        // the way.
         let (mut depth, mut node) = self.recall(corner, memory);
         let path = &mut memory.path;
         // Where the walk ends, for the next one: a position inside the node
