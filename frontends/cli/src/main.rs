@@ -5,10 +5,10 @@
 //! problem.
 
 mod args;
+mod memory;
 mod output;
 mod progress;
 
-use std::fs::File;
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -17,10 +17,11 @@ use voxtrace::glam::Vec3;
 use voxtrace::{
     Camera, CameraSettings, Fog, IAabb, Occlusion, Rect, RenderOptions, VoxModel, VoxelGenerator,
 };
+use voxtrace_cli::atomic::{remove_on_signal, AtomicFile};
 use voxtrace_cli::{framing, on_threads, BuiltScene};
 
 use args::Args;
-use progress::Progress;
+use progress::{Progress, Spinner};
 
 fn main() -> ExitCode {
     let args = match Args::try_parse() {
@@ -40,7 +41,10 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    match run(&args) {
+    // Before any output exists: an interrupted run then removes its
+    // temporary file and leaves `--out` as it was.
+    let result = remove_on_signal().and_then(|()| run(&args));
+    match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
             eprintln!("error: {message}");
@@ -122,20 +126,24 @@ fn run(args: &Args) -> Result<(), String> {
     }
 
     // Check the output first: a bad path fails now, not after the render.
+    // The frame goes to a temporary file beside `--out`, which replaces it
+    // only once complete; on any error it is removed (dropped uncommitted).
     let format = output::format_of(&args.out)?;
-    let file = File::create(&args.out)
+    let file = AtomicFile::create(&args.out)
         .map_err(|e| format!("cannot write --out {}: {e}", args.out.display()))?;
-    let result = render_to(
+    // Refuse what cannot fit before building it, naming the bytes.
+    let voxels = match &subject {
+        Subject::Model(model) => Some(model.voxel_count() as u64),
+        Subject::Terrain { .. } => None,
+    };
+    let pixels = u64::from(region.width) * u64::from(region.height);
+    memory::budget(args.backend, bounds, voxels, pixels, args.max_memory).check(args.backend)?;
+    render_to(
         args, &subject, bounds, &options, &camera, region, file, format,
-    );
-    match result {
-        // Notes only after a success: an error stays the one line on stderr.
-        Ok(()) => notes.iter().for_each(|note| eprintln!("note: {note}")),
-        Err(_) => {
-            let _ = std::fs::remove_file(&args.out);
-        }
-    }
-    result
+    )?;
+    // Notes only after a success: an error stays the one line on stderr.
+    notes.iter().for_each(|note| eprintln!("note: {note}"));
+    Ok(())
 }
 
 /// The effects the flags ask for; fog thickens over the scene's scale.
@@ -203,11 +211,12 @@ fn render_to(
     options: &RenderOptions,
     camera: &Camera,
     region: Rect,
-    file: File,
+    mut file: AtomicFile,
     format: output::Format,
 ) -> Result<(), String> {
     let threaded = args.threads != Some(1);
     let (built, build, rendered) = on_threads(args.threads, || {
+        let spinner = Spinner::start(format!("building the {} scene", args.backend.name()));
         let (built, build) = match subject {
             Subject::Terrain { seed } => {
                 let terrain = VoxelGenerator::new(*seed);
@@ -217,6 +226,7 @@ fn render_to(
                 BuiltScene::build_from(args.backend, model.as_ref(), bounds, threaded)?
             }
         };
+        drop(spinner);
         let progress = Progress::rows(region.height);
         let rendered = built.render(camera, region, options, threaded, &|rows| {
             progress.advance(rows);
@@ -226,8 +236,15 @@ fn render_to(
     })?;
 
     let encode_started = Instant::now();
-    output::write(file, format, region.width, region.height, &rendered.pixels)
-        .map_err(|e| format!("cannot write --out {}: {e}", args.out.display()))?;
+    output::write(
+        &mut file,
+        format,
+        region.width,
+        region.height,
+        &rendered.pixels,
+    )
+    .and_then(|()| file.commit().map_err(|e| e.to_string()))
+    .map_err(|e| format!("cannot write --out {}: {e}", args.out.display()))?;
     let encode = encode_started.elapsed();
 
     if args.stats {

@@ -2,8 +2,7 @@
 //! `image` feature BMP, TGA and PPM through the image crate (built with only
 //! those codecs), chosen by the `--out` extension.
 
-use std::fs::File;
-use std::io::BufWriter;
+use std::io::{Seek, Write};
 use std::path::Path;
 
 /// The file format `--out` asks for.
@@ -46,15 +45,16 @@ pub fn format_of(path: &Path) -> Result<Format, String> {
     ))
 }
 
-/// Writes `width x height` packed pixels to `file` in `format`.
+/// Writes `width x height` packed pixels to `out` in `format` (buffering
+/// is the writer's: the CLI's is an `AtomicFile`, already buffered; some
+/// encoders of the image crate seek back to fill in sizes).
 pub fn write(
-    file: File,
+    out: &mut (impl Write + Seek),
     format: Format,
     width: u32,
     height: u32,
     pixels: &[u32],
 ) -> Result<(), String> {
-    let out = BufWriter::new(file);
     match format {
         Format::Png => voxtrace::encode_png(out, width, height, pixels).map_err(|e| e.to_string()),
         #[cfg(feature = "image")]
@@ -63,14 +63,13 @@ pub fn write(
                 .ok_or("the image has fewer pixels than its size")?;
             // Renders are opaque: RGB is what every offered format takes.
             let rgb = image::DynamicImage::ImageRgba8(rgba).to_rgb8();
-            let mut out = out;
             if format == image::ImageFormat::Pnm {
                 use image::codecs::pnm::{PnmEncoder, PnmSubtype, SampleEncoding};
                 let pixmap = PnmSubtype::Pixmap(SampleEncoding::Binary);
                 rgb.write_with_encoder(PnmEncoder::new(out).with_subtype(pixmap))
                     .map_err(|e| e.to_string())
             } else {
-                rgb.write_to(&mut out, format).map_err(|e| e.to_string())
+                rgb.write_to(out, format).map_err(|e| e.to_string())
             }
         }
     }
