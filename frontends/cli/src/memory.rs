@@ -159,10 +159,11 @@ mod tests {
 
     #[test]
     fn a_refusal_names_the_estimate_and_the_limit() {
-        let b = budget(Backend::Dense, IAabb::centered(10), None, 100, Some(9000));
-        assert_eq!(b.storage, 8000);
+        // 20^3 voxels and 100 pixels of 12 bytes: 9200 bytes in all.
+        let b = budget(Backend::Dense, IAabb::centered(10), None, 100, Some(9200));
+        assert_eq!((b.storage, b.frame), (8000, 1200));
         assert_eq!(b.check(Backend::Dense), Ok(()));
-        let b = budget(Backend::Dense, IAabb::centered(10), None, 100, Some(8000));
+        let b = budget(Backend::Dense, IAabb::centered(10), None, 100, Some(9199));
         let refusal = b.check(Backend::Dense).unwrap_err();
         assert!(refusal.contains("8000 bytes") && refusal.contains("--max-memory"), "{refusal}");
     }
