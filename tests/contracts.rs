@@ -5,9 +5,7 @@
 use std::sync::atomic::{AtomicU32, Ordering};
 
 use voxtrace::glam::IVec3;
-use voxtrace::{
-    Error, FnSource, IAabb, OctreeScene, Palette, Region, VoxelGenerator, VoxelSource,
-};
+use voxtrace::{Error, FnSource, IAabb, OctreeScene, Palette, Region, VoxelGenerator, VoxelSource};
 
 /// A source whose `classify` gives one answer for its first `flip_after`
 /// calls and another after: what a nondeterministic user source does.
@@ -40,7 +38,10 @@ impl VoxelSource for Flipping {
 #[test]
 fn a_source_that_changes_its_answers_is_an_error_naming_a_region() {
     let bounds = IAabb::centered(128); // 256^3: 64 task cubes of 64^3
-    for (before, after) in [(Region::Mixed, Region::Empty), (Region::Empty, Region::Mixed)] {
+    for (before, after) in [
+        (Region::Mixed, Region::Empty),
+        (Region::Empty, Region::Mixed),
+    ] {
         // Flip between the parallel build's two passes over the cubes, or
         // in the middle of the first.
         for flip_after in [1, 9, 73, 200] {

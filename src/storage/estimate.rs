@@ -67,7 +67,10 @@ mod tests {
     #[test]
     fn dense_is_one_byte_per_voxel_even_past_usize() {
         assert_eq!(dense_bytes(IAabb::centered(1)), 8);
-        assert_eq!(dense_bytes(IAabb::new(IVec3::ZERO, IVec3::new(3, 5, 7))), 105);
+        assert_eq!(
+            dense_bytes(IAabb::new(IVec3::ZERO, IVec3::new(3, 5, 7))),
+            105
+        );
         assert_eq!(dense_bytes(IAabb::new(IVec3::ONE, IVec3::ONE)), 0);
         let widest = IAabb::centered(crate::geom::MAX_COORD);
         let side = 2 * crate::geom::MAX_COORD as u128;

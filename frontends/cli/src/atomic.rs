@@ -43,9 +43,9 @@ impl AtomicFile {
     /// # Errors
     /// The directory cannot hold a new file, or `target` names no file.
     pub fn create(target: &Path) -> io::Result<AtomicFile> {
-        let name = target.file_name().ok_or_else(|| {
-            io::Error::new(io::ErrorKind::InvalidInput, "the path names no file")
-        })?;
+        let name = target
+            .file_name()
+            .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "the path names no file"))?;
         let dir = parent_of(target);
         let temp = dir.join(format!(
             ".{}.{}-{}.tmp",
@@ -191,7 +191,11 @@ pub fn remove_on_signal() -> Result<(), String> {
                         for temp in list.iter() {
                             let _ = std::fs::remove_file(temp);
                         }
-                        let name = if signal == SIGINT { "SIGINT" } else { "SIGTERM" };
+                        let name = if signal == SIGINT {
+                            "SIGINT"
+                        } else {
+                            "SIGTERM"
+                        };
                         eprintln!("error: interrupted by {name}; no output file was changed");
                         std::process::exit(128 + signal);
                     }
@@ -214,7 +218,8 @@ mod tests {
     use super::*;
 
     fn dir(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("voxtrace-atomic-{}-{name}", std::process::id()));
+        let dir =
+            std::env::temp_dir().join(format!("voxtrace-atomic-{}-{name}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         dir
@@ -268,7 +273,9 @@ mod tests {
         let target = dir.join("taken");
         std::fs::create_dir(&target).unwrap();
         std::fs::write(target.join("inside"), b"kept").unwrap();
-        let result = write_atomic(&target, |out| out.write_all(b"x").map_err(|e| e.to_string()));
+        let result = write_atomic(&target, |out| {
+            out.write_all(b"x").map_err(|e| e.to_string())
+        });
         assert!(result.is_err());
         assert_eq!(names(&dir), ["taken"]);
         assert_eq!(std::fs::read(target.join("inside")).unwrap(), b"kept");

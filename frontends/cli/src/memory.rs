@@ -165,6 +165,9 @@ mod tests {
         assert_eq!(b.check(Backend::Dense), Ok(()));
         let b = budget(Backend::Dense, IAabb::centered(10), None, 100, Some(9199));
         let refusal = b.check(Backend::Dense).unwrap_err();
-        assert!(refusal.contains("8000 bytes") && refusal.contains("--max-memory"), "{refusal}");
+        assert!(
+            refusal.contains("8000 bytes") && refusal.contains("--max-memory"),
+            "{refusal}"
+        );
     }
 }

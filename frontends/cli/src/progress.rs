@@ -81,7 +81,8 @@ impl Spinner {
         let shown = bar.clone();
         // Detached: it ends after a second, or as soon as the work does.
         std::thread::spawn(move || {
-            let late = wait.recv_timeout(QUIET_FOR) == Err(std::sync::mpsc::RecvTimeoutError::Timeout);
+            let late =
+                wait.recv_timeout(QUIET_FOR) == Err(std::sync::mpsc::RecvTimeoutError::Timeout);
             if late && !shown.is_finished() {
                 shown.set_draw_target(ProgressDrawTarget::stderr());
                 shown.enable_steady_tick(Duration::from_millis(120));

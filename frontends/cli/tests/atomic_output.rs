@@ -59,11 +59,17 @@ fn a_successful_render_replaces_the_file_whole() {
     let out = dir.join("render.png");
     std::fs::write(&out, OLD).unwrap();
     let result = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
-        .args(["--size", "20", "--width", "32", "--height", "18", "--seed", "1", "--out"])
+        .args([
+            "--size", "20", "--width", "32", "--height", "18", "--seed", "1", "--out",
+        ])
         .arg(&out)
         .output()
         .unwrap();
-    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    assert!(
+        result.status.success(),
+        "{}",
+        String::from_utf8_lossy(&result.stderr)
+    );
     let bytes = std::fs::read(&out).unwrap();
     assert_eq!(&bytes[1..4], b"PNG");
     assert_eq!(entries(&dir), ["render.png"]);

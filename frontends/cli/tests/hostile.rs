@@ -53,7 +53,12 @@ fn absurd_args() -> Vec<Vec<&'static str>> {
         vec!["--region", "0,0,4294967295,4294967295"],
         vec!["--region", "15,8,1,1"],
         vec!["--position", "1e38,1e38,1e38"],
-        vec!["--position", "3e38,-3e38,3e38", "--lookat", "-3e38,3e38,-3e38"],
+        vec![
+            "--position",
+            "3e38,-3e38,3e38",
+            "--lookat",
+            "-3e38,3e38,-3e38",
+        ],
         vec!["--position", "inf,0,0"],
         vec!["--position", "NaN,0,0"],
         vec!["--fov", "1e-30"],
@@ -63,7 +68,9 @@ fn absurd_args() -> Vec<Vec<&'static str>> {
         vec!["--sun", "3e38,3e38,3e38", "--shadows"],
         vec!["--ao", "4096", "--ao-distance", "1e38", "--size", "8"],
         vec!["--ao-distance", "1e-45", "--ao", "1"],
-        vec!["--spp", "4096", "--width", "4", "--height", "4", "--size", "8"],
+        vec![
+            "--spp", "4096", "--width", "4", "--height", "4", "--size", "8",
+        ],
         vec!["--threads", "65535"],
         vec!["--seed", "18446744073709551615"],
         vec!["--seed", "18446744073709551616"],
@@ -146,14 +153,22 @@ fn hostile_inputs_end_with_exit_0_or_2_and_one_line() {
     }
     let (count, failures) = run_all(cases);
     println!("{count} hostile inputs");
-    assert!(failures.is_empty(), "{} of {count}:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} of {count}:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }
 
 #[test]
 fn the_bombs_are_refused_by_the_count_naming_the_limit() {
     let dir = scratch("hostile-bombs");
     let out = dir.join("out.png");
-    for (name, path) in write_files(&dir).into_iter().filter(|(n, _)| n.starts_with("bomb")) {
+    for (name, path) in write_files(&dir)
+        .into_iter()
+        .filter(|(n, _)| n.starts_with("bomb"))
+    {
         let size = std::fs::metadata(&path).unwrap().len();
         assert!(size < 2500, "{name} is {size} bytes");
         let mut args = base(&out);
@@ -184,7 +199,10 @@ fn every_truncation_parses_or_fails_in_process() {
         for n in 0..bytes.len() {
             let _ = voxtrace::VoxModel::from_bytes(&bytes[..n]);
         }
-        assert!(voxtrace::VoxModel::from_bytes(&bytes).is_ok(), "{name} whole");
+        assert!(
+            voxtrace::VoxModel::from_bytes(&bytes).is_ok(),
+            "{name} whole"
+        );
     }
 }
 
@@ -206,5 +224,10 @@ fn every_truncation_under_limits() {
     }
     let (count, failures) = run_all(vox_cases(cuts, &out));
     println!("{count} truncated inputs");
-    assert!(failures.is_empty(), "{} of {count}:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} of {count}:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }

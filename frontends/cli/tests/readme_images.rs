@@ -59,7 +59,11 @@ fn captions_are_found_and_name_their_own_image() {
     );
     for (image, args) in &images {
         let out = args.iter().position(|a| a == "--out").map(|i| &args[i + 1]);
-        assert_eq!(out, Some(image), "the caption of {image} writes another file");
+        assert_eq!(
+            out,
+            Some(image),
+            "the caption of {image} writes another file"
+        );
     }
 }
 
@@ -87,7 +91,11 @@ fn every_readme_image_is_what_its_caption_command_writes() {
             .current_dir(&root)
             .output()
             .unwrap();
-        assert!(result.status.success(), "{image}: {}", String::from_utf8_lossy(&result.stderr));
+        assert!(
+            result.status.success(),
+            "{image}: {}",
+            String::from_utf8_lossy(&result.stderr)
+        );
         let committed = std::fs::read(root.join(&image)).unwrap();
         if std::fs::read(&fresh).unwrap() != committed {
             stale.push(format!("{image} (fresh render in {})", fresh.display()));

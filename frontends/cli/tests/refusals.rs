@@ -23,7 +23,10 @@ fn children_peak_rss() -> u64 {
     // SAFETY: getrusage writes a whole rusage into the pointer it is given.
     #[allow(unsafe_code)]
     let usage = unsafe {
-        assert_eq!(libc::getrusage(libc::RUSAGE_CHILDREN, usage.as_mut_ptr()), 0);
+        assert_eq!(
+            libc::getrusage(libc::RUSAGE_CHILDREN, usage.as_mut_ptr()),
+            0
+        );
         usage.assume_init()
     };
     // Linux reports kilobytes.
@@ -41,11 +44,19 @@ fn bombs_and_absurd_sizes_exit_2_quickly_in_little_memory() {
         std::fs::write(&path, &bytes).unwrap();
         println!("bomb {name}: {} bytes", bytes.len());
         let args = vec!["--vox".into(), path.display().to_string()];
-        cases.push((format!("bomb {name}"), args, "more than 262144 model instances"));
+        cases.push((
+            format!("bomb {name}"),
+            args,
+            "more than 262144 model instances",
+        ));
     }
     for size in ["100000", "4194304"] {
         let args = vec!["--size".into(), size.into()];
-        cases.push((format!("--size {size}"), args, "bytes (estimated before building)"));
+        cases.push((
+            format!("--size {size}"),
+            args,
+            "bytes (estimated before building)",
+        ));
     }
     for (name, args, needle) in cases {
         let started = Instant::now();
@@ -58,7 +69,11 @@ fn bombs_and_absurd_sizes_exit_2_quickly_in_little_memory() {
         let elapsed = started.elapsed();
         let rss = children_peak_rss();
         let stderr = String::from_utf8_lossy(&result.stderr);
-        println!("{name}: exit {:?} in {elapsed:.2?}, peak RSS so far {} KB", result.status.code(), rss / 1024);
+        println!(
+            "{name}: exit {:?} in {elapsed:.2?}, peak RSS so far {} KB",
+            result.status.code(),
+            rss / 1024
+        );
         assert_eq!(result.status.code(), Some(2), "{name}: {stderr}");
         assert_eq!(stderr.trim_end().lines().count(), 1, "{name}: {stderr}");
         assert!(stderr.contains(needle), "{name}: {stderr}");

@@ -40,7 +40,8 @@ impl Output {
         // Each file whole or not at all (temporary file, then rename), so a
         // failed or interrupted report keeps the previous tables and plots.
         voxtrace_cli::atomic::write_atomic(&table, |out| {
-            out.write_all(markdown.as_bytes()).map_err(|e| e.to_string())
+            out.write_all(markdown.as_bytes())
+                .map_err(|e| e.to_string())
         })
         .map_err(|e| format!("cannot write {}: {e}", table.display()))?;
         let plot = self.out_dir.join(format!("{name}.png"));

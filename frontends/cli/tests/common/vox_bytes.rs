@@ -113,6 +113,20 @@ pub fn bomb(levels: i32, fan: usize, voxels: bool) -> Vec<u8> {
     file(&chunks) // no palette: MagicaVoxel's default, and a smaller bomb
 }
 
+/// Like [`bomb`], but the last level is an empty group: nothing is ever
+/// placed, so only the count of visited nodes stops the walk.
+pub fn hollow_bomb(levels: i32, fan: usize) -> Vec<u8> {
+    let mut chunks = model([1, 1, 1], &[[0, 0, 0, 1]]);
+    for level in 0..levels {
+        let (trn, grp) = (2 * level, 2 * level + 1);
+        chunks.push(transform(trn, grp, None));
+        chunks.push(group(grp, &vec![grp + 1; fan]));
+    }
+    chunks.push(transform(2 * levels, 2 * levels + 1, None));
+    chunks.push(group(2 * levels + 1, &[]));
+    file(&chunks)
+}
+
 /// A small valid scene: a 4x3x2 model placed twice.
 pub fn small_scene() -> Vec<u8> {
     let voxels: Vec<[u8; 4]> = (0..4u8)
@@ -142,32 +156,49 @@ pub fn hostile_files() -> Vec<(String, Vec<u8>)> {
         ("bomb-10-levels-of-10.vox".into(), bomb(10, 10, true)),
         ("bomb-30-levels-of-2.vox".into(), bomb(30, 2, true)),
         ("bomb-empty-models.vox".into(), bomb(10, 10, false)),
+        ("bomb-hollow.vox".into(), hollow_bomb(10, 10)),
         ("deep-200-levels.vox".into(), bomb(200, 1, true)),
         // Wide: one group with many distinct-looking children, each the
         // same transform; fits the limits, so it renders.
-        ("wide-20000-children.vox".into(), with(vec![
-            transform(0, 1, None),
-            group(1, &[2; 20000]),
-            transform(2, 3, None),
-            shape(3, 0),
-        ])),
-        ("loop.vox".into(), with(vec![transform(0, 1, None), group(1, &[0])])),
-        ("self-group.vox".into(), with(vec![transform(0, 1, None), group(1, &[1])])),
+        (
+            "wide-20000-children.vox".into(),
+            with(vec![
+                transform(0, 1, None),
+                group(1, &[2; 20000]),
+                transform(2, 3, None),
+                shape(3, 0),
+            ]),
+        ),
+        (
+            "loop.vox".into(),
+            with(vec![transform(0, 1, None), group(1, &[0])]),
+        ),
+        (
+            "self-group.vox".into(),
+            with(vec![transform(0, 1, None), group(1, &[1])]),
+        ),
         ("missing-node.vox".into(), with(vec![transform(0, 7, None)])),
-        ("missing-model.vox".into(), with(vec![transform(0, 1, None), shape(1, 9)])),
-        ("translation-far.vox".into(), with(vec![
-            transform(0, 1, Some("2147483647 0 0")),
-            shape(1, 0),
-        ])),
-        ("translation-garbage.vox".into(), with(vec![
-            transform(0, 1, Some("1 two 3")),
-            shape(1, 0),
-        ])),
+        (
+            "missing-model.vox".into(),
+            with(vec![transform(0, 1, None), shape(1, 9)]),
+        ),
+        (
+            "translation-far.vox".into(),
+            with(vec![transform(0, 1, Some("2147483647 0 0")), shape(1, 0)]),
+        ),
+        (
+            "translation-garbage.vox".into(),
+            with(vec![transform(0, 1, Some("1 two 3")), shape(1, 0)]),
+        ),
         // Translations that add up past the coordinate range over levels.
         ("translation-sum.vox".into(), {
             let mut extra = Vec::new();
             for level in 0..30 {
-                extra.push(transform(2 * level, 2 * level + 1, Some("4000000 4000000 4000000")));
+                extra.push(transform(
+                    2 * level,
+                    2 * level + 1,
+                    Some("4000000 4000000 4000000"),
+                ));
                 extra.push(group(2 * level + 1, &[2 * level + 2]));
             }
             extra.push(transform(60, 61, None));
@@ -182,9 +213,18 @@ pub fn hostile_files() -> Vec<(String, Vec<u8>)> {
         file(&chunks)
     };
     cases.push(("size-zero.vox".into(), sized([0, 1, 1], &[])));
-    cases.push(("size-4-billion.vox".into(), sized([u32::MAX; 3], &[[0, 0, 0, 1]])));
-    cases.push(("size-2048-corners.vox".into(), sized([2048; 3], &[[0, 0, 0, 1], [255, 255, 255, 2]])));
-    cases.push(("voxel-outside-size.vox".into(), sized([2, 2, 2], &[[5, 0, 0, 1]])));
+    cases.push((
+        "size-4-billion.vox".into(),
+        sized([u32::MAX; 3], &[[0, 0, 0, 1]]),
+    ));
+    cases.push((
+        "size-2048-corners.vox".into(),
+        sized([2048; 3], &[[0, 0, 0, 1], [255, 255, 255, 2]]),
+    ));
+    cases.push((
+        "voxel-outside-size.vox".into(),
+        sized([2, 2, 2], &[[5, 0, 0, 1]]),
+    ));
     let mut lying_count = model([2, 2, 2], &[[0, 0, 0, 1]]);
     lying_count[1] = chunk(b"XYZI", &u32::MAX.to_le_bytes(), &[]);
     cases.push(("xyzi-count-lies.vox".into(), file(&lying_count)));
@@ -201,7 +241,14 @@ pub fn hostile_files() -> Vec<(String, Vec<u8>)> {
     let dict_chunk = |id: &[u8; 4], body: Vec<u8>| with(vec![chunk(id, &body, &[])]);
     let mut matl = Vec::new();
     int(&mut matl, 1);
-    dict(&mut matl, &[("_type", "_glass"), ("_rough", "not a number"), ("_ior", "-1e999")]);
+    dict(
+        &mut matl,
+        &[
+            ("_type", "_glass"),
+            ("_rough", "not a number"),
+            ("_ior", "-1e999"),
+        ],
+    );
     cases.push(("matl-garbage-values.vox".into(), dict_chunk(b"MATL", matl)));
     let mut matl = Vec::new();
     int(&mut matl, 300);
@@ -212,7 +259,10 @@ pub fn hostile_files() -> Vec<(String, Vec<u8>)> {
     int(&mut robj, 1_000_000); // a key length far beyond the chunk
     cases.push(("robj-string-lies.vox".into(), dict_chunk(b"rOBJ", robj)));
     let mut robj = Vec::new();
-    dict(&mut robj, &[("_type", "_bounce"), ("_diffuse", "\u{0}\u{ff}")]);
+    dict(
+        &mut robj,
+        &[("_type", "_bounce"), ("_diffuse", "\u{0}\u{ff}")],
+    );
     cases.push(("robj-odd-values.vox".into(), dict_chunk(b"rOBJ", robj)));
     // Chunk headers whose sizes lie.
     let mut lying = small_scene();
