@@ -117,7 +117,11 @@ fuzz_target!(|graph: Graph| {
     if bounds.volume().is_ok_and(|v| v <= 1 << 16) {
         let octree = OctreeScene::build(&model, bounds).expect("a small scene builds");
         let solid = bounds.iter().filter(|&p| model.material(p) != 0).count();
-        assert_eq!(solid, model.voxel_count(), "voxel_count counts the solid voxels");
+        assert_eq!(
+            solid,
+            model.voxel_count(),
+            "voxel_count counts the solid voxels"
+        );
         for p in bounds.iter() {
             assert_eq!(octree.material(p), model.material(p), "at {p}");
         }
