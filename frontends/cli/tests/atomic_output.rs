@@ -84,7 +84,7 @@ fn sigint_and_sigterm_mid_render_leave_the_old_file_and_no_temporary() {
         std::fs::write(&out, OLD).unwrap();
         // Minutes of work for the debug binary: still rendering when the
         // signal comes.
-        let mut child = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
+        let child = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
             .args(["--size", "100", "--width", "640", "--height", "360"])
             .args(["--spp", "256", "--shadows", "--seed", "1", "--out"])
             .arg(&out)

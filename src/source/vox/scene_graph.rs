@@ -299,7 +299,15 @@ fn translation_of(value: Option<&String>) -> Result<IVec3, VoxError> {
         .collect::<Result<_, _>>()
         .map_err(|_| VoxError::Invalid(format!("translation '{value}' is not three integers")))?;
     match parts[..] {
-        [x, y, z] if [x, y, z].iter().all(|c| c.abs() <= MAX_COORD) => Ok(IVec3::new(x, y, z)),
+        // unsigned_abs: i32::MIN has no i32 absolute value (found by the
+        // scene_graph fuzz target).
+        [x, y, z]
+            if [x, y, z]
+                .iter()
+                .all(|c| c.unsigned_abs() <= MAX_COORD as u32) =>
+        {
+            Ok(IVec3::new(x, y, z))
+        }
         _ => Err(VoxError::Invalid(format!(
             "translation '{value}' is not three integers within +-{MAX_COORD}"
         ))),
@@ -360,7 +368,7 @@ mod tests {
     fn translations_parse_and_reject_garbage() {
         let t = |s: &str| translation_of(Some(&String::from(s)));
         assert_eq!(t("1 -2 30").unwrap(), IVec3::new(1, -2, 30));
-        for bad in ["1 2", "1 2 3 4", "a b c", "1 2 99999999"] {
+        for bad in ["1 2", "1 2 3 4", "a b c", "1 2 99999999", "-2147483648 0 0"] {
             assert!(t(bad).is_err(), "{bad}");
         }
     }

@@ -186,6 +186,12 @@ pub fn hostile_files() -> Vec<(String, Vec<u8>)> {
             "translation-far.vox".into(),
             with(vec![transform(0, 1, Some("2147483647 0 0")), shape(1, 0)]),
         ),
+        // i32::MIN has no i32 absolute value (the scene_graph fuzz target's
+        // first finding).
+        (
+            "translation-i32-min.vox".into(),
+            with(vec![transform(0, 1, Some("-2147483648 0 0")), shape(1, 0)]),
+        ),
         (
             "translation-garbage.vox".into(),
             with(vec![transform(0, 1, Some("1 two 3")), shape(1, 0)]),
