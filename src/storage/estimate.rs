@@ -81,8 +81,10 @@ mod tests {
     fn octree_grows_with_the_face_and_is_capped_by_the_voxels() {
         let small = octree_bytes(IAabb::centered(100), None);
         let large = octree_bytes(IAabb::centered(200), None);
-        assert_eq!(large, 4 * small, "area, not volume");
-        assert!(octree_bytes(IAabb::centered(100_000), None) > 1 << 40);
+        // Area, not volume (to the rounding of one division by 7).
+        assert!((4 * small).abs_diff(large) < 8, "{small} {large}");
+        // The issue's --size 100000: hundreds of gigabytes, refused at once.
+        assert!(octree_bytes(IAabb::centered(100_000), None) > 100 << 30);
         // A few voxels far apart need a few nodes each, not a surface.
         let far = octree_bytes(IAabb::centered(1 << 20), Some(3));
         assert!(far < 4096, "{far}");
