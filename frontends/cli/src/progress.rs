@@ -63,8 +63,7 @@ pub struct Spinner {
 }
 
 impl Spinner {
-    /// Starts the timer for `message` (e.g. "building the octree, about N
-    /// bytes").
+    /// Starts the timer for `message` (e.g. "building the octree scene").
     pub fn start(message: String) -> Spinner {
         if !std::io::stderr().is_terminal() {
             return Spinner {
