@@ -196,7 +196,9 @@ pub fn remove_on_signal() -> Result<(), String> {
                         } else {
                             "SIGTERM"
                         };
-                        eprintln!("error: interrupted by {name}; no output file was changed");
+                        eprintln!(
+                            "error: interrupted by {name}; unfinished files removed, old ones kept"
+                        );
                         std::process::exit(128 + signal);
                     }
                 })
