@@ -34,9 +34,9 @@ const BRICK_BYTES_X7: u128 = 16 * 8 + 64 * 7;
 /// node per level and a material byte each.
 ///
 /// Against the terrain (seed 1) it is 0.94, 2.4, 1.7 and 1.7 times the
-/// built tree at sizes 50, 100, 200 and 400: the right scale, not a bound. A source that fills its volume with noise can
-/// need more, up to `OctreeScene::max_len`; the build itself stays fallible
-/// either way.
+/// built tree at sizes 50, 100, 200 and 400: the right scale, not a bound.
+/// A source that fills its volume with noise can need more, up to
+/// `OctreeScene::max_len`; the build itself stays fallible either way.
 #[must_use]
 pub fn octree_bytes(bounds: IAabb, solid_voxels: Option<u64>) -> u128 {
     let Some(mut sides) = bounds.const_sides() else {
