@@ -111,3 +111,62 @@ fn fill_box_with_regions_larger_than_the_buffer_fills_the_buffer() {
     source.fill_box(widest, &mut small);
     assert_eq!(small, [0; 8]);
 }
+
+/// Decides two task cubes the other way round on their second question:
+/// the replay opens as many cubes as the first pass, but another one.
+struct Swapping {
+    palette: Palette,
+    asked: std::sync::Mutex<std::collections::HashMap<IAabb, u32>>,
+    a: IAabb,
+    b: IAabb,
+}
+
+impl VoxelSource for Swapping {
+    fn palette(&self) -> &Palette {
+        &self.palette
+    }
+
+    fn material(&self, pos: IVec3) -> u8 {
+        u8::from(pos.y < 0)
+    }
+
+    fn classify(&self, region: IAabb) -> Region {
+        let mut asked = self.asked.lock().unwrap();
+        let count = asked.entry(region).or_insert(0);
+        *count += 1;
+        let first = *count == 1;
+        if region.size().max_element() > 64 {
+            Region::Mixed
+        } else if region == self.a {
+            if first {
+                Region::Mixed
+            } else {
+                Region::Empty
+            }
+        } else if region == self.b {
+            if first {
+                Region::Empty
+            } else {
+                Region::Mixed
+            }
+        } else {
+            Region::Empty
+        }
+    }
+}
+
+#[test]
+fn a_source_that_swaps_which_cube_is_mixed_is_caught_by_the_corner() {
+    let bounds = IAabb::centered(128);
+    let cube = |x: i32| IAabb::new(IVec3::new(x, -128, -128), IVec3::new(x + 64, -64, -64));
+    let source = Swapping {
+        palette: Palette::new(&[]),
+        asked: std::sync::Mutex::new(std::collections::HashMap::new()),
+        a: cube(-128),
+        b: cube(-64),
+    };
+    assert!(matches!(
+        OctreeScene::build_parallel(&source, bounds),
+        Err(Error::InconsistentSource { .. })
+    ));
+}

@@ -42,7 +42,7 @@ impl OctreeScene<Vec<Node>, Vec<u8>> {
             .map(|&corner| {
                 let mut builder = Builder::new(source, bounds, VecSink::default());
                 let root = builder.node(corner, size.min(TASK))?;
-                Ok((root, builder.sink))
+                Ok((corner, root, builder.sink))
             })
             .collect();
         let mut parts = parts.into_iter();
@@ -63,8 +63,9 @@ impl OctreeScene<Vec<Node>, Vec<u8>> {
     }
 }
 
-/// A subtree built by one task: its root and its own nodes and materials.
-type Part = (Option<Node>, VecSink);
+/// A subtree built by one task: its cube's corner, its root and its own
+/// nodes and materials.
+type Part = (IVec3, Option<Node>, VecSink);
 
 /// The corners of the task cubes, in the order the sequential builder
 /// reaches them.
@@ -102,10 +103,14 @@ fn assemble<S: VoxelSource + ?Sized>(
         return Ok(node);
     }
     if size <= TASK {
-        // One part per cube collect_tasks opened; a source whose classify
-        // changed its answer can make the replay open more.
+        // One part per cube collect_tasks opened, in this order; a source
+        // whose classify changed its answer makes the replay open more
+        // cubes or others.
         let cube = IAabb::new(corner, corner + size);
-        let (root, part) = parts.next().ok_or(inconsistent(cube))??;
+        let (built_at, root, part) = parts.next().ok_or(inconsistent(cube))??;
+        if built_at != corner {
+            return Err(inconsistent(cube));
+        }
         return append(&mut builder.sink, root, part);
     }
     let children = octants(corner, size, |corner, half| {
