@@ -43,6 +43,16 @@ pub enum Error {
     },
     /// A ray with a non-finite origin, or a zero or non-finite direction.
     InvalidRay,
+    /// A [`crate::VoxelSource`] contradicted itself while a storage was
+    /// built from it: `classify` answered differently for the same region
+    /// (the region is `[min, max)`). Sources must answer the same question
+    /// the same way; nothing was built.
+    InconsistentSource {
+        /// The region's lowest corner.
+        min: [i32; 3],
+        /// The region's upper corner (exclusive).
+        max: [i32; 3],
+    },
     /// A framebuffer whose size is not the size of the region rendered into it.
     SizeMismatch {
         /// `(width, height)` the operation needs.
@@ -74,6 +84,12 @@ impl fmt::Display for Error {
             Error::InvalidRay => {
                 f.write_str("invalid ray: origin must be finite, direction finite and non-zero")
             }
+            Error::InconsistentSource { min, max } => write!(
+                f,
+                "the voxel source answered differently for the same region \
+                 [{}, {}, {}]..[{}, {}, {}]: its classify must be deterministic",
+                min[0], min[1], min[2], max[0], max[1], max[2]
+            ),
             Error::SizeMismatch { expected, actual } => write!(
                 f,
                 "size mismatch: {}x{} needed, {}x{} given",

@@ -50,29 +50,26 @@ impl IAabb {
         }
     }
 
-    /// Side lengths; non-positive components mean the box is empty.
+    /// Side lengths; non-positive components mean the box is empty. A side
+    /// wider than `i32::MAX` (only outside `[-MAX_COORD, MAX_COORD]`, which
+    /// [`IAabb::validate`] rejects) wraps instead of panicking.
     #[must_use]
     pub fn size(&self) -> IVec3 {
-        self.max - self.min
+        self.max.wrapping_sub(self.min)
     }
 
-    /// True when the box has no position in it.
+    /// True when the box has no position in it (exact for any corners).
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        let s = self.size();
-        s.x <= 0 || s.y <= 0 || s.z <= 0
+        self.max.cmple(self.min).any()
     }
 
     /// Number of positions, with overflow reported instead of wrapped.
     pub fn volume(&self) -> Result<usize, Error> {
-        if self.is_empty() {
-            return Err(Error::ZeroSize);
-        }
-        let s = self.size();
-        (s.x as usize)
-            .checked_mul(s.y as usize)
-            .and_then(|v| v.checked_mul(s.z as usize))
-            .ok_or(Error::SizeOverflow)
+        let [x, y, z] = self.const_sides().ok_or(Error::ZeroSize)?;
+        // Each side is below 2^33: the product fits in u128.
+        let volume = u128::from(x) * u128::from(y) * u128::from(z);
+        usize::try_from(volume).map_err(|_| Error::SizeOverflow)
     }
 
     /// Checks the box is non-empty and inside `[-MAX_COORD, MAX_COORD]`.

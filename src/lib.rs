@@ -93,6 +93,7 @@ pub use source::terrain::{VoxelGenerator, GRASS, HEIGHT, MOUNTAIN, ROUGHNESS, SC
 #[cfg(feature = "vox")]
 pub use source::vox::{scene_graph::VoxError, VoxModel};
 pub use storage::dense::DenseScene;
+pub use storage::estimate::{dense_bytes, octree_bytes};
 pub use storage::octree::{Node, OctreeLen, OctreeScene};
 pub use storage::walk::max_steps;
 pub use voxel::{FnSource, Palette, Region, Voxel, VoxelSource};

@@ -79,9 +79,7 @@ pub trait VoxelSource {
     /// `out.len()` must equal the region's volume; extra elements are left
     /// alone and missing ones are not written.
     fn fill_box(&self, region: IAabb, out: &mut [u8]) {
-        for (slot, pos) in out.iter_mut().zip(region.iter()) {
-            *slot = self.material(pos);
-        }
+        fill_by_position(self, region, out);
     }
 
     /// What is known about `region` without filling it. Must be exact when it
@@ -95,6 +93,21 @@ pub trait VoxelSource {
     fn lookup(&self, pos: IVec3) -> Option<Voxel> {
         self.palette().voxel(self.material(pos))
     }
+}
+
+/// [`VoxelSource::fill_box`] one [`VoxelSource::material`] at a time: the
+/// default, and the fallback of faster versions for a region whose volume
+/// exceeds `out` (or `usize`), where their index arithmetic could overflow.
+pub(crate) fn fill_by_position<S: VoxelSource + ?Sized>(source: &S, region: IAabb, out: &mut [u8]) {
+    for (slot, pos) in out.iter_mut().zip(region.iter()) {
+        *slot = source.material(pos);
+    }
+}
+
+/// True when `out` holds all of `region`: then `x + sx * (y + sy * z)`
+/// indices inside the region cannot overflow.
+pub(crate) fn holds(region: IAabb, out: &[u8]) -> bool {
+    region.volume().is_ok_and(|v| v <= out.len())
 }
 
 /// A [`VoxelSource`] from a palette and a closure `pos -> material`.

@@ -5,7 +5,7 @@ use glam::{IVec3, U8Vec3};
 
 use crate::geom::IAabb;
 use crate::source::noise::Perlin;
-use crate::voxel::{Palette, Region, Voxel, VoxelSource};
+use crate::voxel::{fill_by_position, holds, Palette, Region, Voxel, VoxelSource};
 
 /// Maximum terrain height in voxels (the seed paper's height limit of 100).
 pub const HEIGHT: i32 = 100;
@@ -109,10 +109,13 @@ impl VoxelSource for VoxelGenerator {
 
     /// One noise evaluation per column, however tall the box.
     fn fill_box(&self, region: IAabb, out: &mut [u8]) {
-        let size = region.size();
         if region.is_empty() {
             return;
         }
+        if !holds(region, out) {
+            return fill_by_position(self, region, out);
+        }
+        let size = region.size();
         let (sx, sy) = (size.x as usize, size.y as usize);
         for (zi, z) in (region.min.z..region.max.z).enumerate() {
             for (xi, x) in (region.min.x..region.max.x).enumerate() {

@@ -7,8 +7,10 @@
 //! where single steps would, so the two return the same hit, face and `t`
 //! for every ray, bit for bit. Tracing allocates nothing and panics on no
 //! input; building allocates only through the `build` constructors (feature
-//! `alloc`), which fail with an error instead of aborting.
+//! `alloc`), which fail with an error instead of aborting; [`estimate`]
+//! says how many bytes they will need before they are asked to.
 
 pub(crate) mod dense;
+pub(crate) mod estimate;
 pub(crate) mod octree;
 pub(crate) mod walk;

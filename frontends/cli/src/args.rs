@@ -170,6 +170,12 @@ pub struct Args {
     /// Render-farm tiles (`--tiles`, `--tile-index`).
     #[command(flatten)]
     pub farm: crate::farm::TileArgs,
+
+    /// Memory the scene and frame may use, in bytes with an optional K, M, G
+    /// or T suffix (512M, 4G); a scene estimated to need more is refused
+    /// before it is built [default: what the OS says is available].
+    #[arg(long, value_name = "BYTES", value_parser = crate::memory::parse_bytes)]
+    pub max_memory: Option<u64>,
 }
 
 pub(crate) fn parse_numbers<const N: usize, T: std::str::FromStr>(

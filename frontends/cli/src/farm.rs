@@ -3,15 +3,15 @@
 //! belongs, and `voxtrace stitch` puts the parts back together.
 
 use std::ffi::OsString;
-use std::fs::File;
-use std::io::BufWriter;
+use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Parser;
 use voxtrace::{Camera, RenderOptions};
+use voxtrace_cli::atomic::{remove_on_signal, write_atomic};
 use voxtrace_cli::part::{fnv1a64, settings_text, write_part, Placement};
-use voxtrace_cli::stitch::{list, stitch, write_atomically};
+use voxtrace_cli::stitch::{list, stitch};
 use voxtrace_cli::tiles::{frames_for_task, tile_name, Grid, TaskIndex};
 use voxtrace_cli::FrameRange;
 
@@ -164,8 +164,8 @@ pub fn select(
 ///
 /// # Errors
 /// The encoder's message.
-pub fn write_tile(file: File, job: &TileJob, pixels: &[u32]) -> Result<(), String> {
-    write_part(BufWriter::new(file), &job.placement, &job.settings, pixels)
+pub fn write_tile(out: impl Write, job: &TileJob, pixels: &[u32]) -> Result<(), String> {
+    write_part(BufWriter::new(out), &job.placement, &job.settings, pixels)
 }
 
 /// `voxtrace stitch PART... --out FILE [--allow-partial]`.
@@ -240,7 +240,9 @@ fn run_stitch(args: &StitchArgs) -> Result<(), String> {
     let mut png = Vec::new();
     voxtrace::encode_png(&mut png, frame.width, frame.height, &frame.pixels)
         .map_err(|e| format!("cannot encode the stitched frame: {e}"))?;
-    write_atomically(out, &png)?;
+    remove_on_signal()?;
+    write_atomic(out, |file| file.write_all(&png).map_err(|e| e.to_string()))
+        .map_err(|e| format!("cannot write --out {}: {e}", out.display()))?;
     if !frame.missing.is_empty() {
         eprintln!(
             "note: missing tiles of the {} grid drawn as a checkerboard: {}",

@@ -7,12 +7,11 @@
 mod args;
 mod errors;
 mod farm;
+mod memory;
 mod output;
 mod progress;
 mod view;
 
-use std::fs::File;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
@@ -24,12 +23,13 @@ use voxtrace::{
     Background, Camera, CameraSettings, Fog, IAabb, Occlusion, Projection, RayStats, Rect,
     RenderOptions, VoxModel, VoxelGenerator, VoxelSource,
 };
+use voxtrace_cli::atomic::{remove_on_signal, AtomicFile};
 use voxtrace_cli::{
     export_vox, frame_path, on_threads, terrain_box, turntable, Boxes, BuiltScene, FrameRange,
 };
 
 use args::Args;
-use progress::Progress;
+use progress::{Progress, Spinner};
 use view::{camera_settings, describe, BackgroundArg, ProjectionArg, Stage};
 
 fn main() -> ExitCode {
@@ -46,7 +46,9 @@ fn main() -> ExitCode {
         Ok(parsed) => parsed,
         Err(e) => return clap_failure(&e, &argv),
     };
-    match run(&args, &matches) {
+    // Before any output exists: an interrupted run then removes its
+    // temporary files and leaves every output file as it was.
+    match remove_on_signal().and_then(|()| run(&args, &matches)) {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
             eprintln!("error: {message}");
@@ -197,6 +199,15 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     } else {
         vec![out.clone()]
     };
+    // Refuse what cannot fit before building it, naming the bytes.
+    let voxels = match &subject {
+        Subject::Model(model) => Some(model.voxel_count() as u64),
+        Subject::Terrain { .. } => None,
+    };
+    let pixels = u64::from(region.width) * u64::from(region.height);
+    memory::budget(args.backend, bounds, voxels, pixels, args.max_memory).check(args.backend)?;
+    // The first file is a temporary one beside its path from now on, which
+    // replaces the path only once complete; on any error it is removed.
     let first_file = if to_stdout {
         None
     } else {
@@ -211,24 +222,15 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
         format,
         tile: tile.as_ref(),
     };
-    let result = job.render_all(&cameras, &paths, first_file, &mut notes);
-    match &result {
-        // Notes only after a success: an error stays the one line on stderr.
-        Ok(()) => notes.iter().for_each(|note| eprintln!("note: {note}")),
-        // The first file was created up front: gone again if nothing came
-        // of it (a file that failed half-written is removed where it failed).
-        Err(_) if !to_stdout => {
-            if std::fs::metadata(&paths[0]).is_ok_and(|m| m.len() == 0) {
-                let _ = std::fs::remove_file(&paths[0]);
-            }
-        }
-        Err(_) => {}
-    }
-    result
+    job.render_all(&cameras, &paths, first_file, &mut notes)?;
+    // Notes only after a success: an error stays the one line on stderr.
+    notes.iter().for_each(|note| eprintln!("note: {note}"));
+    Ok(())
 }
 
-fn create(path: &Path) -> Result<File, String> {
-    File::create(path).map_err(|e| format!("cannot write --out {}: {e}", path.display()))
+/// A temporary file beside `path` that replaces it once committed.
+fn create(path: &Path) -> Result<AtomicFile, String> {
+    AtomicFile::create(path).map_err(|e| format!("cannot write --out {}: {e}", path.display()))
 }
 
 /// `--export-vox`: the terrain as a `.vox` file.
@@ -361,20 +363,36 @@ struct Job<'a> {
 }
 
 impl Job<'_> {
-    /// Writes one frame's pixels into `first` (the first path, created up
-    /// front) or else `path`, in the run's format.
-    fn write(&self, first: Option<File>, path: &Path, pixels: &[u32]) -> Result<(), String> {
+    /// Writes one frame's pixels into `first` (the first path's file,
+    /// created up front) or else `path` (standard output for `-`), in the
+    /// run's format, as a part with `--tiles`; a file replaces its path
+    /// only once written whole.
+    fn write(&self, first: Option<AtomicFile>, path: &Path, pixels: &[u32]) -> Result<(), String> {
         let region = self.region;
         let alpha = self.options.background == Background::Transparent;
-        match first {
-            Some(file) => Ok(Box::new(file) as Box<dyn Write>),
-            None if output::is_stdout(path) => Ok(Box::new(std::io::stdout().lock()) as _),
-            None => create(path).map(|f| Box::new(f) as _),
+        let failed = |e: String| format!("cannot write --out {}: {e}", path.display());
+        if first.is_none() && output::is_stdout(path) {
+            let out = std::io::stdout().lock();
+            return output::write(out, self.format, region.width, region.height, pixels, alpha)
+                .map_err(failed);
         }
-        .and_then(|out| {
-            output::write(out, self.format, region.width, region.height, pixels, alpha)
-                .map_err(|e| format!("cannot write --out {}: {e}", path.display()))
-        })
+        let mut file = match first {
+            Some(file) => file,
+            None => create(path)?,
+        };
+        match self.tile {
+            Some(tile) => farm::write_tile(&mut file, tile, pixels),
+            None => output::write(
+                &mut file,
+                self.format,
+                region.width,
+                region.height,
+                pixels,
+                alpha,
+            ),
+        }
+        .and_then(|()| file.commit().map_err(|e| e.to_string()))
+        .map_err(failed)
     }
 
     /// Builds the scene once and renders every frame's camera into its
@@ -384,7 +402,7 @@ impl Job<'_> {
         &self,
         cameras: &[(u32, CameraSettings, Camera)],
         paths: &[PathBuf],
-        first: Option<File>,
+        first: Option<AtomicFile>,
         notes: &mut Vec<String>,
     ) -> Result<(), String> {
         let args = self.args;
@@ -405,6 +423,7 @@ impl Job<'_> {
         }
         let mut first = first;
         let (built, build, totals) = on_threads(args.threads, || {
+            let spinner = Spinner::start(format!("building the {} scene", args.backend.name()));
             let (built, build) = match self.subject {
                 Subject::Terrain { seed, .. } => {
                     let terrain = VoxelGenerator::new(*seed);
@@ -414,6 +433,7 @@ impl Job<'_> {
                     BuiltScene::build_from(args.backend, model.as_ref(), self.bounds, threaded)?
                 }
             };
+            drop(spinner);
             let total_rows = region.height.saturating_mul(cameras.len() as u32);
             let progress = Progress::rows(total_rows);
             let mut totals = (RayStats::default(), Duration::ZERO, Duration::ZERO);
@@ -429,16 +449,8 @@ impl Job<'_> {
                     }
                 };
                 let started = Instant::now();
-                let written = match (first.take(), self.tile) {
-                    (Some(file), Some(tile)) => farm::write_tile(file, tile, &rendered.pixels)
-                        .map_err(|e| format!("cannot write --out {}: {e}", path.display())),
-                    (first, _) => self.write(first, path, &rendered.pixels),
-                };
-                if let Err(e) = written {
+                if let Err(e) = self.write(first.take(), path, &rendered.pixels) {
                     progress.finish();
-                    if !output::is_stdout(path) {
-                        let _ = std::fs::remove_file(path);
-                    }
                     return Err(e);
                 }
                 totals.0 += rendered.rays;

@@ -52,3 +52,53 @@ impl Progress {
         }
     }
 }
+
+/// A spinner with the elapsed time for work that reports no steps (a
+/// storage build): drawn only on a terminal, and only once the work has
+/// taken a second; removed when dropped.
+pub struct Spinner {
+    bar: Option<ProgressBar>,
+    /// Dropped (disconnected) when the work ends, waking the timer thread.
+    done: Option<std::sync::mpsc::Sender<()>>,
+}
+
+impl Spinner {
+    /// Starts the timer for `message` (e.g. "building the octree scene").
+    pub fn start(message: String) -> Spinner {
+        if !std::io::stderr().is_terminal() {
+            return Spinner {
+                bar: None,
+                done: None,
+            };
+        }
+        let style = ProgressStyle::with_template("{elapsed_precise} {spinner} {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_spinner());
+        let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden())
+            .with_style(style)
+            .with_message(message);
+        let (done, wait) = std::sync::mpsc::channel::<()>();
+        let shown = bar.clone();
+        // Detached: it ends after a second, or as soon as the work does.
+        std::thread::spawn(move || {
+            let late =
+                wait.recv_timeout(QUIET_FOR) == Err(std::sync::mpsc::RecvTimeoutError::Timeout);
+            if late && !shown.is_finished() {
+                shown.set_draw_target(ProgressDrawTarget::stderr());
+                shown.enable_steady_tick(Duration::from_millis(120));
+            }
+        });
+        Spinner {
+            bar: Some(bar),
+            done: Some(done),
+        }
+    }
+}
+
+impl Drop for Spinner {
+    fn drop(&mut self) {
+        drop(self.done.take());
+        if let Some(bar) = &self.bar {
+            bar.finish_and_clear();
+        }
+    }
+}

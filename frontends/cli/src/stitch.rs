@@ -7,7 +7,7 @@
 //! it is the same file as a single-machine render.
 
 use std::fs::File;
-use std::io::{BufReader, Write};
+use std::io::BufReader;
 use std::path::{Path, PathBuf};
 
 use crate::part::{read_part, Part};
@@ -177,30 +177,4 @@ fn first_difference(a: &str, b: &str) -> String {
         Some((x, y)) => format!("'{x}' against '{y}'"),
         None => "one text is longer".to_string(),
     }
-}
-
-/// Writes `bytes` to `path` so that `path` is either its old file or the
-/// whole new one: a temporary file in the same directory, synced, then
-/// renamed over it. The temporary file is removed if anything fails.
-///
-/// # Errors
-/// A message naming `path` and the failure.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    let fail = |e: std::io::Error| format!("cannot write --out {}: {e}", path.display());
-    let name = path
-        .file_name()
-        .ok_or_else(|| format!("cannot write --out {}: not a file name", path.display()))?;
-    let mut temp_name = std::ffi::OsString::from(".");
-    temp_name.push(name);
-    temp_name.push(format!(".{}.tmp", std::process::id()));
-    let temp = path.with_file_name(temp_name);
-    let written = File::create(&temp).and_then(|mut file| {
-        file.write_all(bytes)?;
-        file.sync_all()
-    });
-    let result = written.and_then(|()| std::fs::rename(&temp, path));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&temp);
-    }
-    result.map_err(fail)
 }

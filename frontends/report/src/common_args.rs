@@ -1,5 +1,6 @@
 //! Options every report takes: threads, where to write, the plot's font.
 
+use std::io::Write;
 use std::path::PathBuf;
 
 /// Where a report runs and writes.
@@ -21,12 +22,15 @@ impl Output {
     /// Creates the output folder and loads the plot's font: both checked
     /// before minutes of measuring, not after.
     pub fn prepare(&self) -> Result<(), String> {
+        // Ctrl-C while a file is being written removes its temporary file.
+        voxtrace_cli::atomic::remove_on_signal()?;
         std::fs::create_dir_all(&self.out_dir)
             .map_err(|e| format!("cannot create {}: {e}", self.out_dir.display()))?;
         crate::plot::load_font(self.font.as_deref())
     }
 
-    /// Writes `markdown` as `<name>.md` and draws `charts` as `<name>.png`.
+    /// Writes `markdown` as `<name>.md` and draws `charts` as `<name>.png`,
+    /// each through an atomic write.
     pub fn write(
         &self,
         name: &str,
@@ -34,8 +38,13 @@ impl Output {
         charts: &[crate::plot::Chart],
     ) -> Result<(), String> {
         let table = self.out_dir.join(format!("{name}.md"));
-        std::fs::write(&table, markdown)
-            .map_err(|e| format!("cannot write {}: {e}", table.display()))?;
+        // Each file whole or not at all (temporary file, then rename), so a
+        // failed or interrupted report keeps the previous tables and plots.
+        voxtrace_cli::atomic::write_atomic(&table, |out| {
+            out.write_all(markdown.as_bytes())
+                .map_err(|e| e.to_string())
+        })
+        .map_err(|e| format!("cannot write {}: {e}", table.display()))?;
         let plot = self.out_dir.join(format!("{name}.png"));
         crate::plot::draw(&plot, charts)?;
         eprintln!("wrote {} and {}", table.display(), plot.display());

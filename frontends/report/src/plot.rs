@@ -105,8 +105,11 @@ pub fn draw(path: &Path, charts: &[Chart]) -> Result<(), String> {
         .chunks_exact(3)
         .map(|c| voxtrace::pack(voxtrace::glam::U8Vec3::new(c[0], c[1], c[2])))
         .collect();
-    voxtrace::write_png(path, width, height, &pixels)
-        .map_err(|e| format!("cannot write {}: {e}", path.display()))
+    // Whole or not at all: a failed run keeps the previous plot.
+    voxtrace_cli::atomic::write_atomic(path, |out| {
+        voxtrace::encode_png(out, width, height, &pixels).map_err(|e| e.to_string())
+    })
+    .map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
 fn plot_error<E: std::fmt::Display>(e: E) -> String {

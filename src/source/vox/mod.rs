@@ -10,19 +10,20 @@ use std::vec::Vec;
 use glam::{IVec3, U8Vec3};
 
 use crate::geom::{IAabb, MAX_COORD};
-use crate::source::vox::scene_graph::{placements, Placement, VoxError};
+use crate::source::vox::scene_graph::{placements, Placement, VoxError, MAX_PLACED};
 
 pub(crate) mod scene_graph;
-use crate::voxel::{Palette, Region, VoxelSource};
-
-/// The most voxels a scene may place (instances count each time): 2^28,
-/// a quarter of a gigabyte of chunks at worst.
-const MAX_PLACED: u64 = 1 << 28;
+use crate::voxel::{fill_by_position, holds, Palette, Region, VoxelSource};
 
 /// Chunk side, as a shift: 8 voxels.
 const CHUNK_LOG: i32 = 3;
 const CHUNK: i32 = 1 << CHUNK_LOG;
 const CHUNK_VOXELS: usize = (CHUNK * CHUNK * CHUNK) as usize;
+
+/// The most chunks a scene may fill: 512 MiB of voxels. Scattered voxels
+/// can each open a chunk of their own, so the voxel limit alone would
+/// allow far more.
+const MAX_CHUNKS: usize = 1 << 20;
 
 /// A MagicaVoxel scene: every model of the file where MagicaVoxel shows it,
 /// in voxtrace's axes (y up; MagicaVoxel's z becomes y).
@@ -134,9 +135,15 @@ impl VoxModel {
         let slot = match self.index.get(&key) {
             Some(&i) => i as usize,
             None => {
-                self.chunks
-                    .try_reserve(1)
-                    .map_err(|_| VoxError::TooLarge("its chunks cannot be allocated".into()))?;
+                if self.chunks.len() >= MAX_CHUNKS {
+                    return Err(VoxError::TooLarge(format!(
+                        "its voxels fill more than {MAX_CHUNKS} chunks of 8^3 ({} bytes)",
+                        MAX_CHUNKS * CHUNK_VOXELS
+                    )));
+                }
+                let no_memory = |_| VoxError::TooLarge("its chunks cannot be allocated".into());
+                self.chunks.try_reserve(1).map_err(no_memory)?;
+                self.index.try_reserve(1).map_err(no_memory)?;
                 self.chunks.push([0; CHUNK_VOXELS]);
                 let i = self.chunks.len() - 1;
                 self.index.insert(key, i as u32);
@@ -201,9 +208,12 @@ impl VoxelSource for VoxModel {
         if region.is_empty() {
             return;
         }
+        if !holds(region, out) {
+            return fill_by_position(self, region, out);
+        }
         let size = region.size();
         let (sx, sy) = (size.x as usize, size.y as usize);
-        let len = (sx * sy * size.z as usize).min(out.len());
+        let len = sx * sy * size.z as usize; // holds: at most out.len()
         out[..len].fill(0);
         if self.classify(region) == Region::Empty {
             return;

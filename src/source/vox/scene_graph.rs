@@ -48,6 +48,21 @@ const MAX_MODEL_SIDE: u32 = 2048;
 /// writes a handful of levels).
 const MAX_DEPTH: usize = 64;
 
+/// The most model instances a scene may place. A group may list the same
+/// child many times, so placements can grow exponentially with the depth
+/// of a tiny file; the walk counts them as it goes and stops here, with 15
+/// MB of placements at most. Real scenes place hundreds to thousands.
+pub(crate) const MAX_PLACEMENTS: usize = 1 << 18;
+
+/// The most voxels the instances may place, counted as the walk goes (each
+/// instance counts its model's voxels again): 2^28.
+pub(crate) const MAX_PLACED: u64 = 1 << 28;
+
+/// The most scene-graph nodes one walk visits, counting a shared subtree
+/// each time it is reached: bounds the time of a graph of empty groups
+/// that place nothing.
+const MAX_VISITS: u64 = 1 << 22;
+
 /// An integer 3x3 matrix by rows: the signed permutations MagicaVoxel
 /// rotates models with (glam has no integer matrix).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -138,16 +153,15 @@ pub(crate) fn placements(data: &DotVoxData) -> Result<Vec<Placement>, VoxError> 
         }
         return Ok(out);
     }
-    let mut visiting = HashSet::new();
-    walk(
+    let mut walker = Walker {
         data,
-        0,
-        IMat3::IDENTITY,
-        IVec3::ZERO,
-        0,
-        &mut visiting,
-        &mut out,
-    )?;
+        visiting: HashSet::new(),
+        out,
+        visits: 0,
+        voxels: 0,
+    };
+    walker.walk(0, IMat3::IDENTITY, IVec3::ZERO, 0)?;
+    let mut out = walker.out;
     for p in &mut out {
         p.rotation = Z_UP_TO_Y_UP * p.rotation;
         p.translation = Z_UP_TO_Y_UP * p.translation;
@@ -155,78 +169,119 @@ pub(crate) fn placements(data: &DotVoxData) -> Result<Vec<Placement>, VoxError> 
     Ok(out)
 }
 
-/// Visits node `index` under the accumulated transform (z-up).
-fn walk(
-    data: &DotVoxData,
-    index: u32,
-    rotation: IMat3,
-    translation: IVec3,
-    depth: usize,
-    visiting: &mut HashSet<u32>,
-    out: &mut Vec<Placement>,
-) -> Result<(), VoxError> {
-    if depth > MAX_DEPTH || !visiting.insert(index) {
-        return Err(VoxError::Invalid(format!(
-            "the scene graph loops or nests deeper than {MAX_DEPTH} at node {index}"
-        )));
-    }
-    let node = data.scenes.get(index as usize).ok_or_else(|| {
-        VoxError::Invalid(format!("the scene graph refers to missing node {index}"))
-    })?;
-    match node {
-        SceneNode::Transform {
-            attributes,
-            frames,
-            child,
-            layer_id,
-        } => {
-            let hidden_layer = data
-                .layers
-                .get(*layer_id as usize)
-                .is_some_and(|layer| layer.hidden());
-            if hidden(attributes) || hidden_layer {
-                visiting.remove(&index);
-                return Ok(());
-            }
-            let (r, t) = match frames.first() {
-                Some(frame) => (
-                    rotation_of(frame.attributes.get("_r"))?,
-                    translation_of(frame.attributes.get("_t"))?,
-                ),
-                None => (IMat3::IDENTITY, IVec3::ZERO),
-            };
-            let t = rotation * t + translation;
-            walk(data, *child, rotation * r, t, depth + 1, visiting, out)?;
+/// The walk over the scene graph, with what it has counted so far.
+struct Walker<'d> {
+    data: &'d DotVoxData,
+    /// Nodes on the current path: a node met again on it is a loop.
+    visiting: HashSet<u32>,
+    out: Vec<Placement>,
+    /// Nodes visited, shared ones each time.
+    visits: u64,
+    /// Voxels the placements so far place.
+    voxels: u64,
+}
+
+impl Walker<'_> {
+    /// Visits node `index` under the accumulated transform (z-up).
+    fn walk(
+        &mut self,
+        index: u32,
+        rotation: IMat3,
+        translation: IVec3,
+        depth: usize,
+    ) -> Result<(), VoxError> {
+        self.visits += 1;
+        if self.visits > MAX_VISITS {
+            return Err(VoxError::TooLarge(format!(
+                "its scene graph visits more than {MAX_VISITS} nodes (shared subtrees count each time)"
+            )));
         }
-        SceneNode::Group {
-            attributes,
-            children,
-        } => {
-            if !hidden(attributes) {
-                for &child in children {
-                    walk(data, child, rotation, translation, depth + 1, visiting, out)?;
+        if depth > MAX_DEPTH || !self.visiting.insert(index) {
+            return Err(VoxError::Invalid(format!(
+                "the scene graph loops or nests deeper than {MAX_DEPTH} at node {index}"
+            )));
+        }
+        let data = self.data;
+        let node = data.scenes.get(index as usize).ok_or_else(|| {
+            VoxError::Invalid(format!("the scene graph refers to missing node {index}"))
+        })?;
+        match node {
+            SceneNode::Transform {
+                attributes,
+                frames,
+                child,
+                layer_id,
+            } => {
+                let hidden_layer = data
+                    .layers
+                    .get(*layer_id as usize)
+                    .is_some_and(|layer| layer.hidden());
+                if !(hidden(attributes) || hidden_layer) {
+                    let (r, t) = match frames.first() {
+                        Some(frame) => (
+                            rotation_of(frame.attributes.get("_r"))?,
+                            translation_of(frame.attributes.get("_t"))?,
+                        ),
+                        None => (IMat3::IDENTITY, IVec3::ZERO),
+                    };
+                    // Cannot overflow: each level adds at most MAX_COORD
+                    // (2^22) per axis (a signed permutation keeps sizes), over
+                    // at most MAX_DEPTH (64) levels: below 2^28.
+                    debug_assert!(translation.abs().max_element() <= MAX_COORD * MAX_DEPTH as i32);
+                    let t = rotation * t + translation;
+                    self.walk(*child, rotation * r, t, depth + 1)?;
+                }
+            }
+            SceneNode::Group {
+                attributes,
+                children,
+            } => {
+                if !hidden(attributes) {
+                    for &child in children {
+                        self.walk(child, rotation, translation, depth + 1)?;
+                    }
+                }
+            }
+            SceneNode::Shape { models, .. } => {
+                for shape in models {
+                    self.place(shape.model_id as usize, rotation, translation)?;
                 }
             }
         }
-        SceneNode::Shape { models, .. } => {
-            for shape in models {
-                let model = shape.model_id as usize;
-                if model >= data.models.len() {
-                    return Err(VoxError::Invalid(format!(
-                        "a shape uses model {model}, but the file has {}",
-                        data.models.len()
-                    )));
-                }
-                out.push(Placement {
-                    model,
-                    rotation,
-                    translation,
-                });
-            }
-        }
+        self.visiting.remove(&index);
+        Ok(())
     }
-    visiting.remove(&index);
-    Ok(())
+
+    /// Records one instance of `model`, counting it and its voxels against
+    /// the limits before anything is stored.
+    fn place(&mut self, model: usize, rotation: IMat3, translation: IVec3) -> Result<(), VoxError> {
+        let Some(m) = self.data.models.get(model) else {
+            return Err(VoxError::Invalid(format!(
+                "a shape uses model {model}, but the file has {}",
+                self.data.models.len()
+            )));
+        };
+        if self.out.len() >= MAX_PLACEMENTS {
+            return Err(VoxError::TooLarge(format!(
+                "its scene graph places more than {MAX_PLACEMENTS} model instances"
+            )));
+        }
+        self.voxels += m.voxels.len() as u64;
+        if self.voxels > MAX_PLACED {
+            return Err(VoxError::TooLarge(format!(
+                "its instances place more than {MAX_PLACED} voxels"
+            )));
+        }
+        self.out
+            .try_reserve(1)
+            .map_err(|_| VoxError::TooLarge("its placements cannot be allocated".into()))?;
+        self.out.push(Placement {
+            model,
+            rotation,
+            translation,
+        });
+        Ok(())
+    }
 }
 
 fn hidden(attributes: &dot_vox::Dict) -> bool {
@@ -244,7 +299,15 @@ fn translation_of(value: Option<&String>) -> Result<IVec3, VoxError> {
         .collect::<Result<_, _>>()
         .map_err(|_| VoxError::Invalid(format!("translation '{value}' is not three integers")))?;
     match parts[..] {
-        [x, y, z] if [x, y, z].iter().all(|c| c.abs() <= MAX_COORD) => Ok(IVec3::new(x, y, z)),
+        // unsigned_abs: i32::MIN has no i32 absolute value (found by the
+        // scene_graph fuzz target).
+        [x, y, z]
+            if [x, y, z]
+                .iter()
+                .all(|c| c.unsigned_abs() <= MAX_COORD as u32) =>
+        {
+            Ok(IVec3::new(x, y, z))
+        }
         _ => Err(VoxError::Invalid(format!(
             "translation '{value}' is not three integers within +-{MAX_COORD}"
         ))),
@@ -305,7 +368,7 @@ mod tests {
     fn translations_parse_and_reject_garbage() {
         let t = |s: &str| translation_of(Some(&String::from(s)));
         assert_eq!(t("1 -2 30").unwrap(), IVec3::new(1, -2, 30));
-        for bad in ["1 2", "1 2 3 4", "a b c", "1 2 99999999"] {
+        for bad in ["1 2", "1 2 3 4", "a b c", "1 2 99999999", "-2147483648 0 0"] {
             assert!(t(bad).is_err(), "{bad}");
         }
     }

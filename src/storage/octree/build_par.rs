@@ -42,12 +42,17 @@ impl OctreeScene<Vec<Node>, Vec<u8>> {
             .map(|&corner| {
                 let mut builder = Builder::new(source, bounds, VecSink::default());
                 let root = builder.node(corner, size.min(TASK))?;
-                Ok((root, builder.sink))
+                Ok((corner, root, builder.sink))
             })
             .collect();
         let mut parts = parts.into_iter();
         let mut builder = Builder::new(source, bounds, VecSink::default());
         let root = assemble(&mut builder, &mut parts, bounds.min, size)?.unwrap_or(Node::EMPTY);
+        if parts.next().is_some() {
+            // The replay opened fewer cubes than the first pass: the source
+            // called some cube mixed once and decided the second time.
+            return Err(inconsistent(IAabb::new(bounds.min, bounds.min + size)));
+        }
         Ok(Self::from_sink(
             bounds,
             root,
@@ -58,8 +63,9 @@ impl OctreeScene<Vec<Node>, Vec<u8>> {
     }
 }
 
-/// A subtree built by one task: its root and its own nodes and materials.
-type Part = (Option<Node>, VecSink);
+/// A subtree built by one task: its cube's corner, its root and its own
+/// nodes and materials.
+type Part = (IVec3, Option<Node>, VecSink);
 
 /// The corners of the task cubes, in the order the sequential builder
 /// reaches them.
@@ -97,15 +103,28 @@ fn assemble<S: VoxelSource + ?Sized>(
         return Ok(node);
     }
     if size <= TASK {
-        let (root, part) = parts
-            .next()
-            .expect("collect_tasks made one part for each cube assemble reaches")?;
+        // One part per cube collect_tasks opened, in this order; a source
+        // whose classify changed its answer makes the replay open more
+        // cubes or others.
+        let cube = IAabb::new(corner, corner + size);
+        let (built_at, root, part) = parts.next().ok_or(inconsistent(cube))??;
+        if built_at != corner {
+            return Err(inconsistent(cube));
+        }
         return append(&mut builder.sink, root, part);
     }
     let children = octants(corner, size, |corner, half| {
         assemble(builder, parts, corner, half)
     })?;
     builder.combine(&children)
+}
+
+/// The error for a source that classified `region` two ways.
+fn inconsistent(region: IAabb) -> Error {
+    Error::InconsistentSource {
+        min: region.min.to_array(),
+        max: region.max.to_array(),
+    }
 }
 
 /// Appends a part's nodes and materials to `sink`, shifting the indices they

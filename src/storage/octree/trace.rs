@@ -264,7 +264,12 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             // The nodes whose cubes are wider than every changed bit still
             // hold the new position.
             let changed = (corner[axis] ^ cube[axis]) as u32;
-            let keep = (root_log - (u32::BITS - changed.leading_zeros())) as usize;
+            let changed_log = u32::BITS - changed.leading_zeros();
+            // Both cubes are inside the root cube (the walk returned above
+            // once it left the region, which the root covers), so they
+            // differ only below its side.
+            debug_assert!(changed_log <= root_log, "a step left the root cube");
+            let keep = root_log.saturating_sub(changed_log) as usize;
             if keep < depth {
                 depth = keep;
                 node = if depth == 0 {

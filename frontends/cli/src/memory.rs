@@ -1,0 +1,173 @@
+//! Refusing a scene before it is built: the bytes the storage and the frame
+//! will need (estimated by the core, which stays `no_std`) against the
+//! memory this process can have (read from the OS here), or `--max-memory`.
+
+use voxtrace::IAabb;
+use voxtrace_cli::Backend;
+
+/// Bytes per pixel at the peak of a render: the framebuffer (4), the
+/// finished pixels (4) and the encoder's RGBA copy (4).
+const FRAME_BYTES_PER_PIXEL: u128 = 12;
+
+/// What the run will need and what it may use, for one refusal message.
+pub struct Budget {
+    /// Bytes the storage needs: exact for dense, an estimate for the octree.
+    pub storage: u128,
+    /// Bytes of the frame at its peak.
+    pub frame: u128,
+    /// Bytes available, and where the figure comes from.
+    pub available: (u128, &'static str),
+}
+
+/// The budget of a render of `pixels` pixels with `backend` over `bounds`;
+/// `solid_voxels` is the count when the source knows it (a `.vox` model).
+pub fn budget(
+    backend: Backend,
+    bounds: IAabb,
+    solid_voxels: Option<u64>,
+    pixels: u64,
+    max_memory: Option<u64>,
+) -> Budget {
+    let storage = match backend {
+        Backend::Dense => voxtrace::dense_bytes(bounds),
+        Backend::Octree => voxtrace::octree_bytes(bounds, solid_voxels),
+    };
+    let available = match max_memory {
+        Some(bytes) => (u128::from(bytes), "--max-memory"),
+        None => available_memory(),
+    };
+    Budget {
+        storage,
+        frame: u128::from(pixels) * FRAME_BYTES_PER_PIXEL,
+        available,
+    }
+}
+
+impl Budget {
+    /// `Ok` when storage and frame together fit; otherwise the one-line
+    /// refusal, naming the estimate and the limit.
+    pub fn check(&self, backend: Backend) -> Result<(), String> {
+        let (available, from) = self.available;
+        if self.storage + self.frame <= available {
+            return Ok(());
+        }
+        let what = match backend {
+            Backend::Dense => "the dense array for this scene needs".to_string(),
+            Backend::Octree => "the octree for this scene needs about".to_string(),
+        };
+        let hint = match backend {
+            Backend::Dense => "; try --backend octree, a smaller --size or --max-memory",
+            Backend::Octree => "; try a smaller --size, or --max-memory to override",
+        };
+        Err(format!(
+            "{what} {} bytes (estimated before building) and the frame {} bytes, \
+             more than the {available} bytes available ({from}){hint}",
+            self.storage, self.frame
+        ))
+    }
+}
+
+/// The memory this process may still use: the least of the machine's
+/// available memory, its cgroup's remaining limit and its address-space
+/// limit (as `prlimit --as` sets it), each when the OS says. Unknown
+/// (not Linux): no limit, and the build's own allocation checks remain.
+fn available_memory() -> (u128, &'static str) {
+    let read = |path: &str| std::fs::read_to_string(path).ok();
+    let mut best = (u128::MAX, "no limit known");
+    let mut take = |bytes: Option<u128>, from: &'static str| {
+        if let Some(bytes) = bytes.filter(|&b| b < best.0) {
+            best = (bytes, from);
+        }
+    };
+    take(
+        read("/proc/meminfo").and_then(|t| field_kib(&t, "MemAvailable:")),
+        "MemAvailable in /proc/meminfo",
+    );
+    let cgroup = |name: &str| {
+        read(&format!("/sys/fs/cgroup/{name}")).and_then(|t| t.trim().parse::<u128>().ok())
+    };
+    take(
+        cgroup("memory.max").map(|max| max.saturating_sub(cgroup("memory.current").unwrap_or(0))),
+        "the cgroup's memory.max",
+    );
+    let address_space = read("/proc/self/limits").and_then(|t| {
+        let line = t.lines().find(|l| l.starts_with("Max address space"))?;
+        line.split_whitespace().nth(3)?.parse::<u128>().ok()
+    });
+    let mapped = read("/proc/self/status").and_then(|t| field_kib(&t, "VmSize:"));
+    take(
+        address_space.map(|limit| limit.saturating_sub(mapped.unwrap_or(0))),
+        "the address-space limit",
+    );
+    best
+}
+
+/// The value of a `Name:   123 kB` line, in bytes.
+fn field_kib(text: &str, name: &str) -> Option<u128> {
+    let line = text.lines().find(|l| l.starts_with(name))?;
+    let kib: u128 = line[name.len()..].split_whitespace().next()?.parse().ok()?;
+    Some(kib * 1024)
+}
+
+/// Parses `--max-memory`: a byte count with an optional binary suffix, `K`,
+/// `M`, `G` or `T` (powers of 1024, also written `KiB`, `KB`, `k`, ...).
+pub fn parse_bytes(s: &str) -> Result<u64, String> {
+    let text = s.trim();
+    let digits = text
+        .find(|c: char| !c.is_ascii_digit())
+        .unwrap_or(text.len());
+    let (number, suffix) = text.split_at(digits);
+    let shift = match suffix.trim().to_ascii_uppercase().as_str() {
+        "" | "B" => 0,
+        "K" | "KB" | "KIB" => 10,
+        "M" | "MB" | "MIB" => 20,
+        "G" | "GB" | "GIB" => 30,
+        "T" | "TB" | "TIB" => 40,
+        _ => return Err(format!("'{s}' is not a byte count like 512M or 4G")),
+    };
+    number
+        .parse::<u64>()
+        .ok()
+        .and_then(|n| n.checked_mul(1u64 << shift))
+        .filter(|&n| n > 0)
+        .ok_or_else(|| format!("'{s}' is not a byte count like 512M or 4G"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn byte_counts_take_binary_suffixes() {
+        assert_eq!(parse_bytes("1000"), Ok(1000));
+        assert_eq!(parse_bytes("512M"), Ok(512 << 20));
+        assert_eq!(parse_bytes("4G"), Ok(4 << 30));
+        assert_eq!(parse_bytes("4GiB"), Ok(4 << 30));
+        assert_eq!(parse_bytes("2k"), Ok(2048));
+        for bad in ["", "0", "G", "4X", "-1", "1.5G", "99999999999T"] {
+            assert!(parse_bytes(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn the_os_gives_a_figure_on_linux() {
+        let (bytes, from) = available_memory();
+        if cfg!(target_os = "linux") {
+            assert!(bytes > 0 && bytes < u128::MAX, "{bytes} from {from}");
+        }
+    }
+
+    #[test]
+    fn a_refusal_names_the_estimate_and_the_limit() {
+        // 20^3 voxels and 100 pixels of 12 bytes: 9200 bytes in all.
+        let b = budget(Backend::Dense, IAabb::centered(10), None, 100, Some(9200));
+        assert_eq!((b.storage, b.frame), (8000, 1200));
+        assert_eq!(b.check(Backend::Dense), Ok(()));
+        let b = budget(Backend::Dense, IAabb::centered(10), None, 100, Some(9199));
+        let refusal = b.check(Backend::Dense).unwrap_err();
+        assert!(
+            refusal.contains("8000 bytes") && refusal.contains("--max-memory"),
+            "{refusal}"
+        );
+    }
+}
