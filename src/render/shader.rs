@@ -10,9 +10,12 @@
 use glam::{U8Vec3, UVec3, Vec3};
 
 use crate::geom::{Face, Ray};
+use crate::material::{Materials, SceneMaterials};
 use crate::render::camera::Camera;
 use crate::render::debug_view::{box_color, enters_near_edge};
 use crate::render::options::RenderOptions;
+use crate::render::path::{Path, PathSetup};
+use crate::render::plan::{EffectPlan, Look};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{face_index, face_weights, fog_blend, lit, pack, sky, FLAT_SKY};
 use crate::render::stats::RayStats;
@@ -23,8 +26,11 @@ use crate::scene::Scene;
 /// each side of the edge.
 const EDGE_PIXELS: f32 = 0.75;
 
+/// The table of a path-traced frame whose scene has no materials.
+static ALL_DIFFUSE: Materials = Materials::all_diffuse();
+
 /// Everything a frame's pixels need, computed once per frame.
-pub(crate) struct Shader<'c> {
+pub(crate) struct Shader<'c, 'm> {
     camera: &'c Camera,
     options: RenderOptions,
     /// Brightness out of 256 per face (index [`face_index`]) in full light.
@@ -37,12 +43,25 @@ pub(crate) struct Shader<'c> {
     sun: Vec3,
     /// The debug view's edge half-width per unit of distance.
     edge_per_t: f32,
+    /// The path tracer's setup, when the plan is to path-trace.
+    path: Option<PathSetup<'m>>,
 }
 
-impl<'c> Shader<'c> {
-    /// The shader of `options` for `camera`'s frame. Settings
+impl<'c, 'm> Shader<'c, 'm> {
+    /// The shader of `options` for `camera`'s frame of a scene with
+    /// `materials` (`None`: all diffuse). Settings
     /// [`RenderOptions::validate`] rejects are turned off, never a panic.
-    pub(crate) fn new(options: &RenderOptions, camera: &'c Camera) -> Self {
+    pub(crate) fn new(
+        options: &RenderOptions,
+        camera: &'c Camera,
+        materials: Option<SceneMaterials<'m>>,
+    ) -> Self {
+        let plan = EffectPlan::new(options, materials);
+        let path = (plan.look == Look::Path).then(|| {
+            let (table, emitters) =
+                materials.map_or((&ALL_DIFFUSE, &[][..]), |m| (m.table, m.emitters));
+            PathSetup::new(&plan.options, table, emitters)
+        });
         let options = options.sanitized();
         let (light, shadowed, sunlit, sun) = face_weights(options.sun);
         Shader {
@@ -53,6 +72,7 @@ impl<'c> Shader<'c> {
             sunlit,
             sun,
             edge_per_t: EDGE_PIXELS * camera.pixel_spread(),
+            path,
         }
     }
 
@@ -64,6 +84,9 @@ impl<'c> Shader<'c> {
         }
         if o.debug {
             return job.run(&DebugView(self));
+        }
+        if let Some(setup) = &self.path {
+            return self.dispatch_path(setup, job);
         }
         let set = (
             o.shadows,
@@ -97,6 +120,30 @@ impl<'c> Shader<'c> {
             (true, true, true, true),
         )
     }
+
+    /// Runs `job` with the path tracer compiled for the material kinds
+    /// the scene holds.
+    fn dispatch_path<J: FrameJob>(&self, setup: &PathSetup<'m>, job: J) -> J::Output {
+        let kinds = setup.materials.kinds();
+        let camera = self.camera;
+        macro_rules! path_kernels {
+            ($(($g:literal, $m:literal, $e:literal)),* $(,)?) => {
+                match (kinds.glass, kinds.metal, kinds.emissive) {
+                    $(($g, $m, $e) => job.run(&Path::<$g, $m, $e> { camera, setup }),)*
+                }
+            };
+        }
+        path_kernels!(
+            (false, false, false),
+            (false, false, true),
+            (false, true, false),
+            (false, true, true),
+            (true, false, false),
+            (true, false, true),
+            (true, true, false),
+            (true, true, true),
+        )
+    }
 }
 
 /// Something done to a frame's pixels with one kernel: a pixel, a span, a
@@ -124,7 +171,7 @@ pub(crate) trait Kernel: Sync {
 }
 
 /// Rays counted for one primary ray and its hit.
-fn primary(hit: Option<&Hit>) -> RayStats {
+pub(crate) fn primary(hit: Option<&Hit>) -> RayStats {
     RayStats {
         primary_rays: 1,
         primary_hits: u64::from(hit.is_some()),
@@ -133,9 +180,9 @@ fn primary(hit: Option<&Hit>) -> RayStats {
 }
 
 /// The unshaded look.
-struct Flat<'s, 'c>(&'s Shader<'c>);
+struct Flat<'s, 'c, 'm>(&'s Shader<'c, 'm>);
 
-impl Kernel for Flat<'_, '_> {
+impl Kernel for Flat<'_, '_, '_> {
     #[inline]
     fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32, t_start: f32) -> (u32, RayStats) {
         let ray = self.0.camera.get_ray(x, y);
@@ -146,9 +193,9 @@ impl Kernel for Flat<'_, '_> {
 }
 
 /// The debug view: box edges over black voxels and the sky.
-struct DebugView<'s, 'c>(&'s Shader<'c>);
+struct DebugView<'s, 'c, 'm>(&'s Shader<'c, 'm>);
 
-impl Kernel for DebugView<'_, '_> {
+impl Kernel for DebugView<'_, '_, '_> {
     fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32, _: f32) -> (u32, RayStats) {
         let ray = self.0.camera.get_ray(x, y);
         let mut edge = None;
@@ -174,12 +221,12 @@ impl Kernel for DebugView<'_, '_> {
 
 /// The lit look with the chosen effects: shadows, ambient occlusion, fog and
 /// several samples per pixel, each compiled in only when on.
-struct Lit<'s, 'c, const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>(
-    &'s Shader<'c>,
+struct Lit<'s, 'c, 'm, const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>(
+    &'s Shader<'c, 'm>,
 );
 
 impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kernel
-    for Lit<'_, '_, SHADOWS, AO, FOG, AA>
+    for Lit<'_, '_, '_, SHADOWS, AO, FOG, AA>
 {
     #[inline]
     fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32, t_start: f32) -> (u32, RayStats) {
@@ -207,7 +254,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kerne
 }
 
 impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
-    Lit<'_, '_, SHADOWS, AO, FOG, AA>
+    Lit<'_, '_, '_, SHADOWS, AO, FOG, AA>
 {
     /// One camera sample, its walk starting at `t_start`: its color and
     /// rays.
@@ -267,7 +314,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
 /// face): it starts in the empty cell in front of the face, a small step off
 /// the face's plane, so it can never hit the voxel it leaves. `None` for a
 /// hit without a face (a ray that started inside the voxel).
-fn secondary(ray: &Ray, hit: &Hit, dir: Vec3) -> Option<Ray> {
+pub(crate) fn secondary(ray: &Ray, hit: &Hit, dir: Vec3) -> Option<Ray> {
     let face = hit.face?;
     let axis = face.axis();
     let normal = face.normal()[axis];
@@ -282,7 +329,7 @@ fn secondary(ray: &Ray, hit: &Hit, dir: Vec3) -> Option<Ray> {
 }
 
 /// `local` (around `+z`) turned to the hemisphere around `face`'s normal.
-fn around(face: Face, local: Vec3) -> Vec3 {
+pub(crate) fn around(face: Face, local: Vec3) -> Vec3 {
     let axis = face.axis();
     let mut dir = Vec3::ZERO;
     dir[axis] = local.z * face.normal()[axis] as f32;

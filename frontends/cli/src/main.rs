@@ -15,7 +15,8 @@ use std::time::Instant;
 use clap::Parser;
 use voxtrace::glam::Vec3;
 use voxtrace::{
-    Camera, CameraSettings, Fog, IAabb, Occlusion, Rect, RenderOptions, VoxModel, VoxelGenerator,
+    Bounces, Camera, CameraSettings, EffectPlan, Fog, IAabb, Lighting, Look, Occlusion, Rect,
+    RenderOptions, SceneMaterials, VoxModel, VoxelGenerator,
 };
 use voxtrace_cli::{framing, on_threads, BuiltScene};
 
@@ -115,8 +116,20 @@ fn run(args: &Args) -> Result<(), String> {
         )
     })?;
 
-    let options = render_options(args, bounds);
+    let model = match &subject {
+        Subject::Model(model) => Some(model.as_ref()),
+        Subject::Terrain { .. } => None,
+    };
+    let options = render_options(args, bounds, model);
+    let plan = EffectPlan::new(&options, model.map(materials_of));
     let mut notes = ignored_effects(&options);
+    if plan.look == Look::Path {
+        notes.extend(unused_in_path(&options));
+    }
+    if let (Some(model), Some(path)) = (model, &args.vox) {
+        let warnings = model.warnings().iter();
+        notes.extend(warnings.map(|w| format!("{}: {w}", path.display())));
+    }
     if args.vox.is_some() && args.seed.is_some() {
         notes.push("--seed shapes the terrain; a --vox scene does not use it".to_string());
     }
@@ -126,7 +139,7 @@ fn run(args: &Args) -> Result<(), String> {
     let file = File::create(&args.out)
         .map_err(|e| format!("cannot write --out {}: {e}", args.out.display()))?;
     let result = render_to(
-        args, &subject, bounds, &options, &camera, region, file, format,
+        args, &subject, bounds, &options, &plan, &camera, region, file, format,
     );
     match result {
         // Notes only after a success: an error stays the one line on stderr.
@@ -138,12 +151,47 @@ fn run(args: &Args) -> Result<(), String> {
     result
 }
 
-/// The effects the flags ask for; fog thickens over the scene's scale.
-fn render_options(args: &Args, bounds: IAabb) -> RenderOptions {
+/// A model's materials and light list as the renderer takes them.
+fn materials_of(model: &VoxModel) -> SceneMaterials<'_> {
+    SceneMaterials {
+        table: model.materials(),
+        emitters: model.emitters(),
+    }
+}
+
+/// The light of path-traced frames: the file's sun, sky and bounces where
+/// it has them, `--bounces` over the file's.
+fn lighting(args: &Args, model: Option<&VoxModel>) -> Lighting {
+    let mut light = Lighting::DEFAULT;
+    let settings = model.map(|m| *m.settings()).unwrap_or_default();
+    if let (Some(sun), None) = (settings.sun, args.sun) {
+        light.sun_intensity = sun.intensity;
+        light.sun_radius = sun.radius;
+    }
+    light.sky = settings.sky.or(light.sky);
+    if let Some((diffuse, specular)) = settings.bounces {
+        light.bounces = Bounces { diffuse, specular };
+    }
+    if let Some(n) = args.bounces {
+        light.bounces = Bounces {
+            diffuse: n,
+            specular: n,
+        };
+        light.path_trace = true;
+    }
+    light
+}
+
+/// The effects the flags (and a .vox file's settings) ask for; fog
+/// thickens over the scene's scale.
+fn render_options(args: &Args, bounds: IAabb, model: Option<&VoxModel>) -> RenderOptions {
+    let file_sun = model.and_then(|m| m.settings().sun).map(|s| s.direction);
     RenderOptions {
         flat: args.flat,
         debug: args.debug,
-        sun: args.sun.map_or(Some(voxtrace::DEFAULT_SUN), |sun| sun.0),
+        sun: args
+            .sun
+            .map_or(Some(file_sun.unwrap_or(voxtrace::DEFAULT_SUN)), |sun| sun.0),
         shadows: args.shadows,
         occlusion: args.ao.map(|rays| Occlusion {
             rays,
@@ -154,7 +202,27 @@ fn render_options(args: &Args, bounds: IAabb) -> RenderOptions {
             // 3 x --size for the terrain: one and a half times the volume's side.
             distance: 1.5 * bounds.size().max_element() as f32,
         }),
+        lighting: lighting(args, model),
     }
+}
+
+/// Notes for flags a path-traced frame does not use (it lights with its
+/// own light rays and bounces).
+fn unused_in_path(asked: &RenderOptions) -> Vec<String> {
+    let mut unused = Vec::new();
+    if asked.shadows {
+        unused.push("--shadows");
+    }
+    if asked.occlusion.is_some() {
+        unused.push("--ao");
+    }
+    if unused.is_empty() {
+        return Vec::new();
+    }
+    vec![format!(
+        "the scene is path-traced (its light rays cast the shadows): ignoring {}",
+        unused.join(", ")
+    )]
 }
 
 /// One note for each effect asked for that cannot run, so that a user is
@@ -201,6 +269,7 @@ fn render_to(
     subject: &Subject,
     bounds: IAabb,
     options: &RenderOptions,
+    plan: &EffectPlan,
     camera: &Camera,
     region: Rect,
     file: File,
@@ -208,17 +277,21 @@ fn render_to(
 ) -> Result<(), String> {
     let threaded = args.threads != Some(1);
     let (built, build, rendered) = on_threads(args.threads, || {
-        let (built, build) = match subject {
+        let (built, build, materials) = match subject {
             Subject::Terrain { seed } => {
                 let terrain = VoxelGenerator::new(*seed);
-                BuiltScene::build_from(args.backend, &terrain, bounds, threaded)?
+                let (built, build) =
+                    BuiltScene::build_from(args.backend, &terrain, bounds, threaded)?;
+                (built, build, None)
             }
             Subject::Model(model) => {
-                BuiltScene::build_from(args.backend, model.as_ref(), bounds, threaded)?
+                let (built, build) =
+                    BuiltScene::build_from(args.backend, model.as_ref(), bounds, threaded)?;
+                (built, build, Some(materials_of(model)))
             }
         };
         let progress = Progress::rows(region.height);
-        let rendered = built.render(camera, region, options, threaded, &|rows| {
+        let rendered = built.render_with(materials, camera, region, options, threaded, &|rows| {
             progress.advance(rows);
         });
         progress.finish();
@@ -240,6 +313,10 @@ fn render_to(
         eprintln!("primary_rays: {}", rays.primary_rays);
         eprintln!("shadow_rays: {}", rays.shadow_rays);
         eprintln!("ao_rays: {}", rays.ao_rays);
+        eprintln!("reflection_rays: {}", rays.reflection_rays);
+        eprintln!("refraction_rays: {}", rays.refraction_rays);
+        eprintln!("light_rays: {}", rays.light_rays);
+        eprintln!("effects: {plan}");
         eprintln!("storage_bytes: {}", built.scene().storage_bytes());
         eprintln!("mrays_per_s: {mrays:.3}");
     }
