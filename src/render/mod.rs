@@ -25,6 +25,7 @@ pub(crate) mod options;
 pub(crate) mod parallel;
 pub(crate) mod path;
 pub(crate) mod plan;
+pub(crate) mod rays;
 pub(crate) mod sampling;
 pub(crate) mod scalar;
 pub(crate) mod shade;

@@ -9,17 +9,17 @@
 
 use glam::{U8Vec3, UVec3, Vec3};
 
-use crate::geom::{Face, Ray};
+use crate::geom::Ray;
 use crate::material::{Materials, SceneMaterials};
 use crate::render::camera::Camera;
 use crate::render::debug_view::{box_color, enters_near_edge};
 use crate::render::options::RenderOptions;
 use crate::render::path::{Path, PathSetup};
 use crate::render::plan::{EffectPlan, Look};
+use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{face_index, face_weights, fog_blend, lit, pack, sky, FLAT_SKY};
 use crate::render::stats::RayStats;
-use crate::scene::Hit;
 use crate::scene::Scene;
 
 /// How wide the debug view's edges are: a fraction of a pixel's footprint
@@ -146,6 +146,15 @@ impl<'c, 'm> Shader<'c, 'm> {
     }
 }
 
+impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Kernel
+    for Path<'_, '_, GLASS, METAL, EMIT>
+{
+    #[inline]
+    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32, t_start: f32) -> (u32, RayStats) {
+        self.trace_pixel(scene, x, y, t_start)
+    }
+}
+
 /// Something done to a frame's pixels with one kernel: a pixel, a span, a
 /// region, a threaded frame.
 pub(crate) trait FrameJob {
@@ -167,15 +176,6 @@ pub(crate) trait Kernel: Sync {
     /// debug view walks from the camera to show every box).
     fn uses_beam(&self) -> bool {
         true
-    }
-}
-
-/// Rays counted for one primary ray and its hit.
-pub(crate) fn primary(hit: Option<&Hit>) -> RayStats {
-    RayStats {
-        primary_rays: 1,
-        primary_hits: u64::from(hit.is_some()),
-        ..RayStats::default()
     }
 }
 
@@ -308,32 +308,4 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
         }
         (color, stats)
     }
-}
-
-/// A ray leaving `hit`'s entry face along `dir` (which points out of the
-/// face): it starts in the empty cell in front of the face, a small step off
-/// the face's plane, so it can never hit the voxel it leaves. `None` for a
-/// hit without a face (a ray that started inside the voxel).
-pub(crate) fn secondary(ray: &Ray, hit: &Hit, dir: Vec3) -> Option<Ray> {
-    let face = hit.face?;
-    let axis = face.axis();
-    let normal = face.normal()[axis];
-    // The plane of the face, and a step off it that survives rounding at
-    // any coordinate: 1/256, or one unit in the last place far out.
-    let plane = (hit.pos[axis] + i32::from(normal > 0)) as f32;
-    let step = (1.0 / 256.0f32).max(plane.abs() * f32::EPSILON);
-    let cell = hit.pos.as_vec3();
-    let mut origin = ray.at(hit.t).clamp(cell, cell + 1.0);
-    origin[axis] = plane + normal as f32 * step;
-    Ray::new(origin, dir).ok()
-}
-
-/// `local` (around `+z`) turned to the hemisphere around `face`'s normal.
-pub(crate) fn around(face: Face, local: Vec3) -> Vec3 {
-    let axis = face.axis();
-    let mut dir = Vec3::ZERO;
-    dir[axis] = local.z * face.normal()[axis] as f32;
-    dir[(axis + 1) % 3] = local.x;
-    dir[(axis + 2) % 3] = local.y;
-    dir
 }

@@ -9,7 +9,7 @@ use crate::material::MaterialKind;
 use crate::math::sqrt32;
 use crate::render::path::bsdf::cone;
 use crate::render::path::{PathSetup, Rng};
-use crate::render::shader::secondary;
+use crate::render::rays::secondary;
 use crate::render::stats::RayStats;
 use crate::scene::{Hit, Scene};
 

@@ -14,7 +14,7 @@ use crate::geom::{Face, Ray};
 use crate::material::{Material, MaterialKind, Materials};
 use crate::render::path::bsdf::{fresnel_dielectric, microfacet, reflect, refract};
 use crate::render::path::Rng;
-use crate::render::shader::secondary;
+use crate::render::rays::secondary;
 use crate::render::stats::RayStats;
 use crate::scene::{Hit, Scene};
 

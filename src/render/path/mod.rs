@@ -28,9 +28,9 @@ use crate::geom::Ray;
 use crate::material::{MaterialKind, Materials};
 use crate::render::camera::Camera;
 use crate::render::options::{Bounces, Fog, RenderOptions};
+use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{pack, sky, to_u8, SKY_HORIZON};
-use crate::render::shader::{around, primary, secondary, Kernel};
 use crate::render::stats::RayStats;
 use crate::scene::Scene;
 
@@ -126,10 +126,16 @@ pub(crate) struct Path<'s, 'm, const GLASS: bool, const METAL: bool, const EMIT:
     pub(crate) setup: &'s PathSetup<'m>,
 }
 
-impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Kernel
-    for Path<'_, '_, GLASS, METAL, EMIT>
-{
-    fn pixel<S: Scene + ?Sized>(&self, scene: &S, x: u32, y: u32, t_start: f32) -> (u32, RayStats) {
+impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS, METAL, EMIT> {
+    /// Pixel `(x, y)`: the mean radiance of its samples, and the rays
+    /// traced (the kernel's `pixel`).
+    pub(crate) fn trace_pixel<S: Scene + ?Sized>(
+        &self,
+        scene: &S,
+        x: u32,
+        y: u32,
+        t_start: f32,
+    ) -> (u32, RayStats) {
         let samples = u32::from(self.setup.samples.max(1));
         let mut sum = Vec3::ZERO;
         let mut stats = RayStats::default();
