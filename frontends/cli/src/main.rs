@@ -126,10 +126,15 @@ fn run(args: &Args) -> Result<(), String> {
     if plan.look == Look::Path {
         notes.extend(unused_in_path(&options));
     }
-    if let (Some(model), Some(path)) = (model, &args.vox) {
-        let warnings = model.warnings().iter();
-        notes.extend(warnings.map(|w| format!("{}: {w}", path.display())));
-    }
+    // The file's MATL values that could not be used as they are.
+    let warnings: Vec<String> = match (model, &args.vox) {
+        (Some(model), Some(path)) => model
+            .warnings()
+            .iter()
+            .map(|w| format!("{}: {w}", path.display()))
+            .collect(),
+        _ => Vec::new(),
+    };
     if args.vox.is_some() && args.seed.is_some() {
         notes.push("--seed shapes the terrain; a --vox scene does not use it".to_string());
     }
@@ -143,7 +148,10 @@ fn run(args: &Args) -> Result<(), String> {
     );
     match result {
         // Notes only after a success: an error stays the one line on stderr.
-        Ok(()) => notes.iter().for_each(|note| eprintln!("note: {note}")),
+        Ok(()) => {
+            warnings.iter().for_each(|w| eprintln!("warning: {w}"));
+            notes.iter().for_each(|note| eprintln!("note: {note}"));
+        }
         Err(_) => {
             let _ = std::fs::remove_file(&args.out);
         }
