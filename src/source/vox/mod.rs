@@ -150,7 +150,7 @@ impl VoxModel {
             }
         }
         used[0] = false;
-        self.materials = Box::new(matl::materials(matl, &used, &mut self.warnings));
+        *self.materials = matl::materials(matl, &used, &mut self.warnings);
         let glows = |m: u8| self.materials.get(m).kind() == MaterialKind::Emissive;
         let mut emitters = Vec::new();
         for (&key, &slot) in &self.index {
