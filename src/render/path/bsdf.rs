@@ -86,7 +86,8 @@ pub(crate) fn reflect(d: Vec3, m: Vec3) -> Vec3 {
 #[inline]
 #[must_use]
 pub(crate) fn schlick(f0: Vec3, cos: f32) -> Vec3 {
-    let c = (1.0 - cos.clamp(0.0, 1.0)).powi(5);
+    let x = 1.0 - cos.clamp(0.0, 1.0);
+    let c = x * x * x * x * x;
     f0 + (Vec3::ONE - f0) * c
 }
 
