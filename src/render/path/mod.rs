@@ -198,7 +198,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
             let albedo = h.voxel.color.as_vec3() * (1.0 / 255.0);
             let choice = rng.next();
             match material.kind() {
-                MaterialKind::Emissive if EMIT => {
+                MaterialKind::Emissive if EMIT && material.emission() > 0.0 => {
                     if count_emission || setup.emitters.is_empty() {
                         sum += beta * albedo * material.emission();
                     }
