@@ -6,6 +6,11 @@
 //! code of a frame without shadows contains no shadow test at all (and so
 //! on for every effect). Every renderer (pixel, span, region, threaded) is a
 //! job, so they all compute pixels with the same code.
+//!
+//! Scenes whose voxels use metal, glass or emitters (the [`EffectPlan`]
+//! says) get the path tracer instead, compiled for the material kinds
+//! present; the face-shaded kernels above are untouched by it, so
+//! all-diffuse scenes render as they always did.
 
 use glam::{U8Vec3, UVec3, Vec3};
 
