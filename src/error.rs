@@ -41,6 +41,11 @@ pub enum Error {
         /// Which setting is wrong and why.
         reason: &'static str,
     },
+    /// A material parameter is out of range; the reason names it.
+    InvalidMaterial {
+        /// Which parameter is wrong and why.
+        reason: &'static str,
+    },
     /// A ray with a non-finite origin, or a zero or non-finite direction.
     InvalidRay,
     /// A [`crate::VoxelSource`] contradicted itself while a storage was
@@ -81,6 +86,7 @@ impl fmt::Display for Error {
             }
             Error::InvalidCamera { reason } => write!(f, "invalid camera: {reason}"),
             Error::InvalidOptions { reason } => write!(f, "invalid render options: {reason}"),
+            Error::InvalidMaterial { reason } => write!(f, "invalid material: {reason}"),
             Error::InvalidRay => {
                 f.write_str("invalid ray: origin must be finite, direction finite and non-zero")
             }

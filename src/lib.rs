@@ -67,9 +67,11 @@ mod error;
 mod fallible;
 mod frustum;
 mod geom;
+mod material;
 mod math;
 mod scene;
 mod voxel;
+mod with_materials;
 
 #[cfg(feature = "std")]
 mod io;
@@ -80,9 +82,13 @@ mod storage;
 pub use error::Error;
 pub use frustum::Frustum;
 pub use geom::{Face, IAabb, Ray, MAX_COORD};
+pub use material::{Material, MaterialKind, MaterialKinds, Materials, SceneMaterials};
 pub use render::camera::{Camera, CameraSettings, DEFAULT_FOV};
 pub use render::fit::Framer;
-pub use render::options::{Background, Fog, Occlusion, RenderOptions, DEFAULT_SUN};
+pub use render::options::{
+    Background, Bounces, Fog, Lighting, Occlusion, RenderOptions, DEFAULT_SUN,
+};
+pub use render::plan::{EffectPlan, Look};
 pub use render::scalar::{render, render_pixel, render_region, render_span};
 pub use render::shade::{pack, shade, sky, unpack, FLAT_SKY, SKY_HORIZON, SKY_ZENITH};
 pub use render::stats::{RayStats, Rect};
@@ -91,12 +97,17 @@ pub use scene::{Hit, Scene, Traced, WalkMemory};
 pub use source::noise::{Perlin, SplitMix64};
 pub use source::terrain::{VoxelGenerator, GRASS, HEIGHT, MOUNTAIN, ROUGHNESS, SCALE, SNOW, WATER};
 #[cfg(feature = "vox")]
-pub use source::vox::{scene_graph::VoxError, VoxModel};
+pub use source::vox::{
+    robj::{VoxSettings, VoxSun},
+    scene_graph::VoxError,
+    VoxModel,
+};
 pub use storage::dense::DenseScene;
 pub use storage::estimate::{dense_bytes, octree_bytes};
 pub use storage::octree::{Node, OctreeLen, OctreeScene};
 pub use storage::walk::max_steps;
 pub use voxel::{FnSource, Palette, Region, Voxel, VoxelSource};
+pub use with_materials::WithMaterials;
 
 /// Re-export of the image crate, whose `RgbaImage` frames convert to and
 /// from.

@@ -7,6 +7,7 @@ use glam::IVec3;
 
 use crate::frustum::Frustum;
 use crate::geom::{Face, IAabb, Ray};
+use crate::material::SceneMaterials;
 use crate::voxel::{Palette, Voxel};
 
 /// The first solid voxel along a ray.
@@ -193,6 +194,14 @@ pub trait Scene {
 
     /// Bytes of voxel storage this scene holds (arrays and palette).
     fn storage_bytes(&self) -> usize;
+
+    /// The scene's materials and emitters; `None` (the default): every
+    /// palette entry is diffuse. Storages answer `None`; wrap one in
+    /// [`crate::WithMaterials`] to give it materials.
+    #[inline]
+    fn materials(&self) -> Option<SceneMaterials<'_>> {
+        None
+    }
 }
 
 impl<S: Scene + ?Sized> Scene for &S {
@@ -240,5 +249,9 @@ impl<S: Scene + ?Sized> Scene for &S {
 
     fn storage_bytes(&self) -> usize {
         (**self).storage_bytes()
+    }
+
+    fn materials(&self) -> Option<SceneMaterials<'_>> {
+        (**self).materials()
     }
 }

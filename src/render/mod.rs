@@ -7,6 +7,10 @@
 //! [`scalar`] renderer runs it over rows, crops or whole frames into a
 //! caller's `&mut [u32]`, counting rays in [`stats`].
 //!
+//! Scenes with metal, glass or emitters ([`plan`] decides, from the
+//! materials the scene's voxels use) get the [`path`] tracer instead of
+//! face shading.
+//!
 //! One function, `render_pixel`, defines every pixel, so the scalar render,
 //! any crop, and the threaded render over the atomic [`framebuffer`]
 //! (feature `std`) with its parallel pixel iterator ([`parallel`], feature
@@ -20,6 +24,9 @@ pub(crate) mod framebuffer;
 pub(crate) mod options;
 #[cfg(feature = "rayon")]
 pub(crate) mod parallel;
+pub(crate) mod path;
+pub(crate) mod plan;
+pub(crate) mod rays;
 pub(crate) mod sampling;
 pub(crate) mod scalar;
 pub(crate) mod shade;

@@ -45,6 +45,69 @@ pub enum Background {
     Color(U8Vec3),
 }
 
+/// How many bounces a light path may take, by kind (MagicaVoxel's
+/// `_bounce` settings).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Bounces {
+    /// Diffuse bounces after the first hit (0: direct light only).
+    pub diffuse: u8,
+    /// Specular events: mirror and glossy reflections, refractions.
+    pub specular: u8,
+}
+
+impl Bounces {
+    /// The counts MagicaVoxel files carry by default: 2 diffuse, 5
+    /// specular.
+    pub const DEFAULT: Bounces = Bounces {
+        diffuse: 2,
+        specular: 5,
+    };
+}
+
+/// The light of a path-traced frame: what a frame whose scene has metal,
+/// glass or emitters (or that asks for `path_trace`) is lit by. The
+/// face-shaded look of the other frames does not read it.
+///
+/// Radiances are in units where 1 is a color's full value (255): a diffuse
+/// voxel of color `c` under a uniform sky of radiance `L` with nothing
+/// above it is `c * L`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lighting {
+    /// A uniform sky of this radiance (MagicaVoxel's `_uni`); `None`: the
+    /// sky gradient ([`crate::sky`]) as radiance.
+    pub sky: Option<Vec3>,
+    /// The sun's strength: a diffuse face of color `c` facing the sun
+    /// receives `c * sun_intensity` from it (and less by the cosine).
+    /// Its direction is [`RenderOptions::sun`].
+    pub sun_intensity: f32,
+    /// The sun's angular radius in radians (0: a point, hard shadows).
+    pub sun_radius: f32,
+    /// Bounce limits.
+    pub bounces: Bounces,
+    /// Path-trace even a scene whose materials are all diffuse (global
+    /// illumination from the sky and the sun).
+    pub path_trace: bool,
+}
+
+impl Lighting {
+    /// The default light: the sky gradient, a sun of strength 0.6 and
+    /// angular radius 0.02 (about a degree), [`Bounces::DEFAULT`], and
+    /// path tracing only where materials call for it.
+    pub const DEFAULT: Lighting = Lighting {
+        sky: None,
+        sun_intensity: 0.6,
+        sun_radius: 0.02,
+        bounces: Bounces::DEFAULT,
+        path_trace: false,
+    };
+}
+
+impl Default for Lighting {
+    fn default() -> Self {
+        Lighting::DEFAULT
+    }
+}
+
 /// The look of a frame: which effects it simulates. Every effect is off
 /// unless asked for, and an effect that is off costs nothing per ray (the
 /// renderer picks a tracer compiled for the chosen set once per frame).
@@ -79,6 +142,9 @@ pub struct RenderOptions {
     pub fog: Option<Fog>,
     /// What misses show.
     pub background: Background,
+    /// The light of path-traced frames (scenes with metal, glass or
+    /// emitters).
+    pub lighting: Lighting,
 }
 
 impl Default for RenderOptions {
@@ -101,6 +167,7 @@ impl RenderOptions {
             samples: 1,
             fog: None,
             background: Background::Sky,
+            lighting: Lighting::DEFAULT,
         }
     }
 
@@ -134,6 +201,16 @@ impl RenderOptions {
         if self.fog.is_some_and(|fog| !usable_distance(fog.distance)) {
             return invalid("the fog distance must be positive and finite");
         }
+        let light = &self.lighting;
+        if light.sky.is_some_and(|sky| !usable_radiance(sky)) {
+            return invalid("the sky radiance must be finite and non-negative");
+        }
+        if !(light.sun_intensity >= 0.0 && light.sun_intensity.is_finite()) {
+            return invalid("the sun intensity must be finite and non-negative");
+        }
+        if !(0.0..=1.5).contains(&light.sun_radius) {
+            return invalid("the sun's angular radius must be in [0, 1.5] radians");
+        }
         Ok(())
     }
 
@@ -150,6 +227,14 @@ impl RenderOptions {
             .occlusion
             .filter(|ao| ao.rays > 0 && usable_distance(ao.distance));
         options.fog = options.fog.filter(|fog| usable_distance(fog.distance));
+        let light = &mut options.lighting;
+        light.sky = light.sky.filter(|&sky| usable_radiance(sky));
+        if !(light.sun_intensity >= 0.0 && light.sun_intensity.is_finite()) {
+            light.sun_intensity = 0.0;
+        }
+        if !(0.0..=1.5).contains(&light.sun_radius) {
+            light.sun_radius = 0.0;
+        }
         options
     }
 
@@ -168,6 +253,7 @@ impl RenderOptions {
                 samples: 1,
                 fog: None,
                 background: self.background,
+                lighting: self.lighting,
             };
         }
         RenderOptions {
@@ -180,6 +266,11 @@ impl RenderOptions {
 /// A sun direction the shading can normalize.
 fn usable_sun(sun: Vec3) -> bool {
     sun.is_finite() && sun != Vec3::ZERO
+}
+
+/// A radiance the path tracer can use: finite, no negative channel.
+fn usable_radiance(radiance: Vec3) -> bool {
+    radiance.is_finite() && radiance.min_element() >= 0.0
 }
 
 /// A positive, finite distance.

@@ -34,7 +34,7 @@ pub fn render_pixel<S: Scene + ?Sized>(
             kernel.pixel(self.scene, self.x, self.y, 0.0, &mut Memories::default())
         }
     }
-    Shader::new(options, camera).dispatch(Pixel { scene, x, y })
+    Shader::new(options, camera, scene.materials()).dispatch(Pixel { scene, x, y })
 }
 
 /// Renders pixels `(x0 + i, y)` for every `i` in `0..out.len()` into `out`.
@@ -56,7 +56,7 @@ pub fn render_span<S: Scene + ?Sized>(
         width: u32::try_from(out.len()).unwrap_or(u32::MAX),
         height: 1,
     };
-    Shader::new(options, camera).dispatch(Tiles {
+    Shader::new(options, camera, scene.materials()).dispatch(Tiles {
         scene,
         camera,
         rect,
@@ -112,12 +112,14 @@ pub fn render_region<S: Scene + ?Sized>(
             actual: out.len(),
         });
     }
-    Ok(Shader::new(options, camera).dispatch(Tiles {
-        scene,
-        camera,
-        rect: region,
-        out: &mut out[..required],
-    }))
+    Ok(
+        Shader::new(options, camera, scene.materials()).dispatch(Tiles {
+            scene,
+            camera,
+            rect: region,
+            out: &mut out[..required],
+        }),
+    )
 }
 
 /// Renders the whole frame into `out` (row-major, `width * height` RGBA8

@@ -6,27 +6,38 @@
 //! code of a frame without shadows contains no shadow test at all (and so
 //! on for every effect). Every renderer (pixel, span, region, threaded) is a
 //! job, so they all compute pixels with the same code.
+//!
+//! Scenes whose voxels use metal, glass or emitters (the [`EffectPlan`]
+//! says) get the path tracer instead, compiled for the material kinds
+//! present; the face-shaded kernels above are untouched by it, so
+//! all-diffuse scenes render as they always did.
 
 use glam::{U8Vec3, UVec3, Vec3};
 
-use crate::geom::{Face, Ray};
+use crate::geom::Ray;
+use crate::material::{Materials, SceneMaterials};
 use crate::render::camera::Camera;
 use crate::render::debug_view::{box_color, enters_near_edge};
 use crate::render::options::{Background, RenderOptions};
+use crate::render::path::{Path, PathSetup};
+use crate::render::plan::{EffectPlan, Look};
+use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{
     face_index, face_weights, fog_blend, lit, pack, pack_alpha, sky, FLAT_SKY,
 };
 use crate::render::stats::RayStats;
-use crate::scene::Hit;
 use crate::scene::{Scene, WalkMemory};
 
 /// How wide the debug view's edges are: a fraction of a pixel's footprint
 /// each side of the edge.
 const EDGE_PIXELS: f32 = 0.75;
 
+/// The table of a path-traced frame whose scene has no materials.
+static ALL_DIFFUSE: Materials = Materials::all_diffuse();
+
 /// Everything a frame's pixels need, computed once per frame.
-pub(crate) struct Shader<'c> {
+pub(crate) struct Shader<'c, 'm> {
     camera: &'c Camera,
     options: RenderOptions,
     /// Brightness out of 256 per face (index [`face_index`]) in full light.
@@ -40,12 +51,25 @@ pub(crate) struct Shader<'c> {
     /// The debug view's edge half-width: at distance 0, and its growth per
     /// unit of distance.
     edge: (f32, f32),
+    /// The path tracer's setup, when the plan is to path-trace.
+    path: Option<PathSetup<'m>>,
 }
 
-impl<'c> Shader<'c> {
-    /// The shader of `options` for `camera`'s frame. Settings
+impl<'c, 'm> Shader<'c, 'm> {
+    /// The shader of `options` for `camera`'s frame of a scene with
+    /// `materials` (`None`: all diffuse). Settings
     /// [`RenderOptions::validate`] rejects are turned off, never a panic.
-    pub(crate) fn new(options: &RenderOptions, camera: &'c Camera) -> Self {
+    pub(crate) fn new(
+        options: &RenderOptions,
+        camera: &'c Camera,
+        materials: Option<SceneMaterials<'m>>,
+    ) -> Self {
+        let plan = EffectPlan::new(options, materials);
+        let path = (plan.look == Look::Path).then(|| {
+            let (table, emitters) =
+                materials.map_or((&ALL_DIFFUSE, &[][..]), |m| (m.table, m.emitters));
+            PathSetup::new(&plan.options, table, emitters)
+        });
         let options = options.sanitized();
         let (light, shadowed, sunlit, sun) = face_weights(options.sun);
         Shader {
@@ -60,6 +84,7 @@ impl<'c> Shader<'c> {
             } else {
                 (0.0, EDGE_PIXELS * camera.pixel_spread())
             },
+            path,
         }
     }
 
@@ -71,6 +96,9 @@ impl<'c> Shader<'c> {
         }
         if o.debug {
             return job.run(&DebugView(self));
+        }
+        if let Some(setup) = &self.path {
+            return self.dispatch_path(setup, job);
         }
         let set = (
             o.shadows,
@@ -103,6 +131,46 @@ impl<'c> Shader<'c> {
             (true, true, true, false),
             (true, true, true, true),
         )
+    }
+
+    /// Runs `job` with the path tracer compiled for the material kinds
+    /// the scene holds.
+    fn dispatch_path<J: FrameJob>(&self, setup: &PathSetup<'m>, job: J) -> J::Output {
+        let kinds = setup.materials.kinds();
+        let camera = self.camera;
+        macro_rules! path_kernels {
+            ($(($g:literal, $m:literal, $e:literal)),* $(,)?) => {
+                match (kinds.glass, kinds.metal, kinds.emissive) {
+                    $(($g, $m, $e) => job.run(&Path::<$g, $m, $e> { camera, setup }),)*
+                }
+            };
+        }
+        path_kernels!(
+            (false, false, false),
+            (false, false, true),
+            (false, true, false),
+            (false, true, true),
+            (true, false, false),
+            (true, false, true),
+            (true, true, false),
+            (true, true, true),
+        )
+    }
+}
+
+impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Kernel
+    for Path<'_, '_, GLASS, METAL, EMIT>
+{
+    #[inline]
+    fn pixel<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        x: u32,
+        y: u32,
+        t_start: f32,
+        _: &mut Memories<'s>,
+    ) -> (u32, RayStats) {
+        self.trace_pixel(scene, x, y, t_start)
     }
 }
 
@@ -150,7 +218,7 @@ pub(crate) trait Kernel: Sync {
     }
 }
 
-impl Shader<'_> {
+impl Shader<'_, '_> {
     /// The packed pixel of a primary ray that missed: `sky` is the sky's
     /// color in this look.
     #[inline]
@@ -173,19 +241,10 @@ impl Shader<'_> {
     }
 }
 
-/// Rays counted for one primary ray and its hit.
-fn primary(hit: Option<&Hit>) -> RayStats {
-    RayStats {
-        primary_rays: 1,
-        primary_hits: u64::from(hit.is_some()),
-        ..RayStats::default()
-    }
-}
-
 /// The unshaded look.
-struct Flat<'s, 'c>(&'s Shader<'c>);
+struct Flat<'s, 'c, 'm>(&'s Shader<'c, 'm>);
 
-impl Kernel for Flat<'_, '_> {
+impl Kernel for Flat<'_, '_, '_> {
     #[inline]
     fn pixel<'s, S: Scene + ?Sized>(
         &self,
@@ -205,9 +264,9 @@ impl Kernel for Flat<'_, '_> {
 }
 
 /// The debug view: box edges over black voxels and the sky.
-struct DebugView<'s, 'c>(&'s Shader<'c>);
+struct DebugView<'s, 'c, 'm>(&'s Shader<'c, 'm>);
 
-impl Kernel for DebugView<'_, '_> {
+impl Kernel for DebugView<'_, '_, '_> {
     fn pixel<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
@@ -240,12 +299,12 @@ impl Kernel for DebugView<'_, '_> {
 
 /// The lit look with the chosen effects: shadows, ambient occlusion, fog and
 /// several samples per pixel, each compiled in only when on.
-struct Lit<'s, 'c, const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>(
-    &'s Shader<'c>,
+struct Lit<'s, 'c, 'm, const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>(
+    &'s Shader<'c, 'm>,
 );
 
 impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kernel
-    for Lit<'_, '_, SHADOWS, AO, FOG, AA>
+    for Lit<'_, '_, '_, SHADOWS, AO, FOG, AA>
 {
     #[inline]
     fn pixel<'s, S: Scene + ?Sized>(
@@ -298,7 +357,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kerne
 }
 
 impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
-    Lit<'_, '_, SHADOWS, AO, FOG, AA>
+    Lit<'_, '_, '_, SHADOWS, AO, FOG, AA>
 {
     /// One camera sample, its walk starting at `t_start`: its color (the
     /// sky's when it misses: `primary_hits` is then 0) and rays.
@@ -357,32 +416,4 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
         }
         (color, stats)
     }
-}
-
-/// A ray leaving `hit`'s entry face along `dir` (which points out of the
-/// face): it starts in the empty cell in front of the face, a small step off
-/// the face's plane, so it can never hit the voxel it leaves. `None` for a
-/// hit without a face (a ray that started inside the voxel).
-fn secondary(ray: &Ray, hit: &Hit, dir: Vec3) -> Option<Ray> {
-    let face = hit.face?;
-    let axis = face.axis();
-    let normal = face.normal()[axis];
-    // The plane of the face, and a step off it that survives rounding at
-    // any coordinate: 1/256, or one unit in the last place far out.
-    let plane = (hit.pos[axis] + i32::from(normal > 0)) as f32;
-    let step = (1.0 / 256.0f32).max(plane.abs() * f32::EPSILON);
-    let cell = hit.pos.as_vec3();
-    let mut origin = ray.at(hit.t).clamp(cell, cell + 1.0);
-    origin[axis] = plane + normal as f32 * step;
-    Ray::new(origin, dir).ok()
-}
-
-/// `local` (around `+z`) turned to the hemisphere around `face`'s normal.
-fn around(face: Face, local: Vec3) -> Vec3 {
-    let axis = face.axis();
-    let mut dir = Vec3::ZERO;
-    dir[axis] = local.z * face.normal()[axis] as f32;
-    dir[(axis + 1) % 3] = local.x;
-    dir[(axis + 2) % 3] = local.y;
-    dir
 }

@@ -17,6 +17,15 @@ pub struct RayStats {
     /// Ambient occlusion rays: the setting's ray count per primary hit that
     /// entered through a face, 0 with occlusion off.
     pub ao_rays: u64,
+    /// Rays reflected off a surface in a path-traced frame (diffuse, glossy
+    /// and mirror bounces, reflections off glass); 0 in face-shaded frames.
+    pub reflection_rays: u64,
+    /// Rays refracted through a glass interface, into or out of the glass;
+    /// 0 without glass.
+    pub refraction_rays: u64,
+    /// Rays toward a light in a path-traced frame (next-event estimation:
+    /// toward the sun's disk or an emissive voxel); 0 in face-shaded frames.
+    pub light_rays: u64,
 }
 
 impl core::ops::AddAssign for RayStats {
@@ -25,6 +34,9 @@ impl core::ops::AddAssign for RayStats {
         self.primary_hits += rhs.primary_hits;
         self.shadow_rays += rhs.shadow_rays;
         self.ao_rays += rhs.ao_rays;
+        self.reflection_rays += rhs.reflection_rays;
+        self.refraction_rays += rhs.refraction_rays;
+        self.light_rays += rhs.light_rays;
     }
 }
 

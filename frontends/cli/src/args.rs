@@ -158,6 +158,11 @@ pub struct Args {
     #[arg(long)]
     pub fog: bool,
 
+    /// Bounces per light path, diffuse and specular alike (overrides a .vox
+    /// file's `_bounce`); path-traces even an all-diffuse scene.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8))]
+    pub bounces: Option<u8>,
+
     /// Worker threads for the build and the render; 1 runs the scalar
     /// single-threaded path [default: all cores].
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]

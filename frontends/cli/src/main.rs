@@ -20,8 +20,9 @@ use clap::parser::ValueSource;
 use clap::{ArgMatches, CommandFactory, FromArgMatches};
 use voxtrace::glam::Vec3;
 use voxtrace::{
-    Background, Camera, CameraSettings, Fog, IAabb, Occlusion, Projection, RayStats, Rect,
-    RenderOptions, VoxModel, VoxelGenerator, VoxelSource,
+    Background, Bounces, Camera, CameraSettings, EffectPlan, Fog, IAabb, Lighting, Look, Occlusion,
+    Projection, RayStats, Rect, RenderOptions, SceneMaterials, VoxModel, VoxelGenerator,
+    VoxelSource,
 };
 use voxtrace_cli::atomic::{remove_on_signal, AtomicFile};
 use voxtrace_cli::{
@@ -163,7 +164,12 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
         })
         .collect::<Result<Vec<_>, String>>()?;
     let first = &cameras[0].2;
-    let options = render_options(args, bounds);
+    let model = match &subject {
+        Subject::Model(model) => Some(model.as_ref()),
+        Subject::Terrain { .. } => None,
+    };
+    let options = render_options(args, bounds, model);
+    let plan = EffectPlan::new(&options, model.map(materials_of));
     let tile = farm::select(args, first, &options)?;
     let region = match &tile {
         Some(tile) => tile.placement.rect,
@@ -179,6 +185,18 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     let out = tile.as_ref().map_or(&args.out, |tile| &tile.out);
     let format = output::format_of(out, args.format)?;
     let mut notes = ignored_effects(&options);
+    if plan.look == Look::Path {
+        notes.extend(unused_in_path(&options));
+    }
+    // The file's MATL values that could not be used as they are.
+    let warnings: Vec<String> = match (model, &args.vox) {
+        (Some(model), Some(path)) => model
+            .warnings()
+            .iter()
+            .map(|w| format!("{}: {w}", path.display()))
+            .collect(),
+        _ => Vec::new(),
+    };
     notes.extend(ignored_flags(args, matches, &settings, format));
 
     // Check the output first: a bad path fails now, not after the render.
@@ -218,12 +236,14 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
         subject: &subject,
         bounds,
         options: &options,
+        plan: &plan,
         region,
         format,
         tile: tile.as_ref(),
     };
     job.render_all(&cameras, &paths, first_file, &mut notes)?;
     // Notes only after a success: an error stays the one line on stderr.
+    warnings.iter().for_each(|w| eprintln!("warning: {w}"));
     notes.iter().for_each(|note| eprintln!("note: {note}"));
     Ok(())
 }
@@ -251,13 +271,67 @@ fn export(args: &Args, path: &Path) -> Result<(), String> {
     Ok(())
 }
 
-/// The effects the flags ask for; fog thickens over the scene's scale.
-fn render_options(args: &Args, bounds: IAabb) -> RenderOptions {
+/// A model's materials and light list as the renderer takes them.
+fn materials_of(model: &VoxModel) -> SceneMaterials<'_> {
+    SceneMaterials {
+        table: model.materials(),
+        emitters: model.emitters(),
+    }
+}
+
+/// The light of path-traced frames: the file's sun, sky and bounces where
+/// it has them, `--bounces` over the file's.
+fn lighting(args: &Args, model: Option<&VoxModel>) -> Lighting {
+    let mut light = Lighting::DEFAULT;
+    let settings = model.map(|m| *m.settings()).unwrap_or_default();
+    if let (Some(sun), None) = (settings.sun, args.sun) {
+        light.sun_intensity = sun.intensity;
+        light.sun_radius = sun.radius;
+    }
+    light.sky = settings.sky.or(light.sky);
+    if let Some((diffuse, specular)) = settings.bounces {
+        light.bounces = Bounces { diffuse, specular };
+    }
+    if let Some(n) = args.bounces {
+        light.bounces = Bounces {
+            diffuse: n,
+            specular: n,
+        };
+        light.path_trace = true;
+    }
+    light
+}
+
+/// Notes for flags a path-traced frame does not use (it lights with its
+/// own light rays and bounces).
+fn unused_in_path(asked: &RenderOptions) -> Vec<String> {
+    let mut unused = Vec::new();
+    if asked.shadows {
+        unused.push("--shadows");
+    }
+    if asked.occlusion.is_some() {
+        unused.push("--ao");
+    }
+    if unused.is_empty() {
+        return Vec::new();
+    }
+    vec![format!(
+        "the scene is path-traced (its light rays cast the shadows): ignoring {}",
+        unused.join(", ")
+    )]
+}
+
+/// The effects the flags (and a .vox file's settings) ask for; fog
+/// thickens over the scene's scale.
+fn render_options(args: &Args, bounds: IAabb, model: Option<&VoxModel>) -> RenderOptions {
     let BackgroundArg(background) = args.background;
+    let file_sun = model.and_then(|m| m.settings().sun).map(|s| s.direction);
     RenderOptions {
         flat: args.flat,
         debug: args.debug,
-        sun: args.sun.map_or(Some(voxtrace::DEFAULT_SUN), |sun| sun.0),
+        sun: args
+            .sun
+            .map_or(Some(file_sun.unwrap_or(voxtrace::DEFAULT_SUN)), |sun| sun.0),
         shadows: args.shadows,
         occlusion: args.ao.map(|rays| Occlusion {
             rays,
@@ -269,6 +343,7 @@ fn render_options(args: &Args, bounds: IAabb) -> RenderOptions {
             distance: 1.5 * bounds.size().max_element() as f32,
         }),
         background,
+        lighting: lighting(args, model),
     }
 }
 
@@ -356,6 +431,8 @@ struct Job<'a> {
     subject: &'a Subject,
     bounds: IAabb,
     options: &'a RenderOptions,
+    /// The effects the frames simulate, for `--stats`.
+    plan: &'a EffectPlan,
     region: Rect,
     format: output::Format,
     /// The render-farm tile this run renders, written as a part.
@@ -424,13 +501,21 @@ impl Job<'_> {
         let mut first = first;
         let (built, build, totals) = on_threads(args.threads, || {
             let spinner = Spinner::start(format!("building the {} scene", args.backend.name()));
-            let (built, build) = match self.subject {
+            let (built, build, materials) = match self.subject {
                 Subject::Terrain { seed, .. } => {
                     let terrain = VoxelGenerator::new(*seed);
-                    BuiltScene::build_from(args.backend, &terrain, self.bounds, threaded)?
+                    let (built, build) =
+                        BuiltScene::build_from(args.backend, &terrain, self.bounds, threaded)?;
+                    (built, build, None)
                 }
                 Subject::Model(model) => {
-                    BuiltScene::build_from(args.backend, model.as_ref(), self.bounds, threaded)?
+                    let (built, build) = BuiltScene::build_from(
+                        args.backend,
+                        model.as_ref(),
+                        self.bounds,
+                        threaded,
+                    )?;
+                    (built, build, Some(materials_of(model)))
                 }
             };
             drop(spinner);
@@ -438,9 +523,10 @@ impl Job<'_> {
             let progress = Progress::rows(total_rows);
             let mut totals = (RayStats::default(), Duration::ZERO, Duration::ZERO);
             for ((_, _, camera), path) in cameras.iter().zip(paths) {
-                let rendered = built.render(camera, region, self.options, threaded, &|rows| {
-                    progress.advance(rows);
-                });
+                let rendered =
+                    built.render_with(materials, camera, region, self.options, threaded, &|rows| {
+                        progress.advance(rows);
+                    });
                 let rendered = match rendered {
                     Ok(r) => r,
                     Err(e) => {
@@ -471,6 +557,10 @@ impl Job<'_> {
             eprintln!("primary_rays: {}", rays.primary_rays);
             eprintln!("shadow_rays: {}", rays.shadow_rays);
             eprintln!("ao_rays: {}", rays.ao_rays);
+            eprintln!("reflection_rays: {}", rays.reflection_rays);
+            eprintln!("refraction_rays: {}", rays.refraction_rays);
+            eprintln!("light_rays: {}", rays.light_rays);
+            eprintln!("effects: {}", self.plan);
             eprintln!("storage_bytes: {}", built.scene().storage_bytes());
             eprintln!("mrays_per_s: {mrays:.3}");
             eprintln!("scene_min: {}", v(self.bounds.min));

@@ -13,7 +13,8 @@ use crate::units::human_bytes;
 use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{
     render_parallel_with_progress, render_region, Camera, DenseScene, Error, Framebuffer, IAabb,
-    Node, OctreeScene, RayStats, Rect, RenderOptions, Scene, VoxelGenerator, VoxelSource,
+    Node, OctreeScene, RayStats, Rect, RenderOptions, Scene, SceneMaterials, VoxelGenerator,
+    VoxelSource, WithMaterials,
 };
 
 /// Which storage holds the voxels.
@@ -177,10 +178,39 @@ impl BuiltScene {
         threaded: bool,
         progress: &(dyn Fn(u32) + Sync),
     ) -> Result<Rendered, String> {
+        self.render_with(None, camera, region, options, threaded, progress)
+    }
+
+    /// [`BuiltScene::render`] of the storage shaded with `materials` (a
+    /// `.vox` file's; `None`: all diffuse).
+    ///
+    /// # Errors
+    /// As [`BuiltScene::render`].
+    pub fn render_with(
+        &self,
+        materials: Option<SceneMaterials<'_>>,
+        camera: &Camera,
+        region: Rect,
+        options: &RenderOptions,
+        threaded: bool,
+        progress: &(dyn Fn(u32) + Sync),
+    ) -> Result<Rendered, String> {
         // Monomorphized per storage: the hot loop never calls through `dyn`.
-        match self {
-            BuiltScene::Dense(scene) => render(scene, camera, region, options, threaded, progress),
-            BuiltScene::Octree(scene) => render(scene, camera, region, options, threaded, progress),
+        match (self, materials) {
+            (BuiltScene::Dense(scene), None) => {
+                render(scene, camera, region, options, threaded, progress)
+            }
+            (BuiltScene::Octree(scene), None) => {
+                render(scene, camera, region, options, threaded, progress)
+            }
+            (BuiltScene::Dense(scene), Some(m)) => {
+                let scene = WithMaterials::new(scene, m.table, m.emitters);
+                render(&scene, camera, region, options, threaded, progress)
+            }
+            (BuiltScene::Octree(scene), Some(m)) => {
+                let scene = WithMaterials::new(scene, m.table, m.emitters);
+                render(&scene, camera, region, options, threaded, progress)
+            }
         }
     }
 }

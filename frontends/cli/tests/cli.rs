@@ -153,6 +153,9 @@ fn stats_print_every_contract_key() {
         "primary_rays",
         "shadow_rays",
         "ao_rays",
+        "reflection_rays",
+        "refraction_rays",
+        "light_rays",
         "storage_bytes",
         "mrays_per_s",
     ] {
@@ -164,6 +167,11 @@ fn stats_print_every_contract_key() {
         assert!(value.parse::<f64>().is_ok(), "{line}");
     }
     assert!(stderr.contains("primary_rays: 512\n"));
+    // The terrain calls for nothing new: the face-shaded look, no new rays.
+    assert!(stderr.contains("effects: sun\n"), "{stderr}");
+    for key in ["reflection_rays", "refraction_rays", "light_rays"] {
+        assert!(stderr.contains(&format!("{key}: 0\n")), "{stderr}");
+    }
 }
 
 #[test]
@@ -482,5 +490,150 @@ fn bad_vox_files_exit_2_with_one_line() {
         assert_eq!(result.status.code(), Some(2), "{name}: {stderr}");
         assert_eq!(stderr.trim_end().lines().count(), 1, "{name}: {stderr}");
         assert!(stderr.contains("cannot load --vox"), "{name}: {stderr}");
+    }
+}
+
+/// A 4x1x1 model whose voxels use palette entries 1 (metal), 2 (glass),
+/// 3 (emissive) and 4 (diffuse), with the MATL values `glass` for entry 2.
+fn material_vox(name: &str, glass: &[(&str, &str)]) -> PathBuf {
+    use dot_vox::{Color, DotVoxData, Material, Model, Size, Voxel};
+    let props = |pairs: &[(&str, &str)]| {
+        pairs
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.to_string()))
+            .collect()
+    };
+    let data = DotVoxData {
+        version: 150,
+        index_map: Vec::new(),
+        models: vec![Model {
+            size: Size { x: 4, y: 1, z: 1 },
+            voxels: (0..4u8)
+                .map(|x| Voxel {
+                    x,
+                    y: 0,
+                    z: 0,
+                    i: x,
+                })
+                .collect(),
+        }],
+        palette: vec![
+            Color {
+                r: 200,
+                g: 180,
+                b: 160,
+                a: 255
+            };
+            256
+        ],
+        materials: vec![
+            Material {
+                id: 1,
+                properties: props(&[("_type", "_metal"), ("_metal", "1"), ("_rough", "0.2")]),
+            },
+            Material {
+                id: 2,
+                properties: props(glass),
+            },
+            Material {
+                id: 3,
+                properties: props(&[("_type", "_emit"), ("_emit", "1")]),
+            },
+        ],
+        scenes: Vec::new(),
+        layers: Vec::new(),
+    };
+    let path = scratch(name);
+    data.write_vox(&mut std::fs::File::create(&path).unwrap())
+        .unwrap();
+    path
+}
+
+#[test]
+fn material_scenes_print_their_plan_and_count_every_new_ray() {
+    let vox = material_vox(
+        "materials.vox",
+        &[("_type", "_glass"), ("_trans", "1"), ("_ior", "0.5")],
+    );
+    let out = scratch("materials.png");
+    let result = voxtrace(&[
+        "--vox",
+        vox.to_str().unwrap(),
+        "--width",
+        "48",
+        "--height",
+        "32",
+        "--spp",
+        "4",
+        "--stats",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(result.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("effects: sun, sky(gradient), diffuse(2 bounces), metal(5 bounces), glass(5 bounces), emission(1 lights), spp(4)\n"),
+        "{stderr}"
+    );
+    let count = |key: &str| -> u64 {
+        let line = stderr
+            .lines()
+            .find(|l| l.starts_with(&format!("{key}: ")))
+            .unwrap();
+        line.split_once(": ").unwrap().1.parse().unwrap()
+    };
+    assert!(
+        count("reflection_rays") > 0 && count("refraction_rays") > 0 && count("light_rays") > 0
+    );
+    assert!(!stderr.contains("warning"), "{stderr}");
+    // --bounces 0 leaves direct light only: no bounce rays at all.
+    let result = voxtrace(&[
+        "--vox",
+        vox.to_str().unwrap(),
+        "--width",
+        "48",
+        "--height",
+        "32",
+        "--bounces",
+        "0",
+        "--stats",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(result.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("reflection_rays: 0\n") && stderr.contains("refraction_rays: 0\n"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("diffuse(0 bounces)"), "{stderr}");
+}
+
+#[test]
+fn bad_matl_values_warn_in_one_line_naming_file_material_and_key() {
+    let vox = material_vox(
+        "bad-matl.vox",
+        &[("_type", "_glass"), ("_trans", "1"), ("_ior", "-0.5")],
+    );
+    let out = scratch("bad-matl.png");
+    let result = voxtrace(&[
+        "--vox",
+        vox.to_str().unwrap(),
+        "--width",
+        "16",
+        "--height",
+        "9",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(result.status.success(), "{stderr}");
+    let warning: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("warning: "))
+        .collect();
+    assert_eq!(warning.len(), 1, "{stderr}");
+    for needle in ["bad-matl.vox", "material 2", "_ior", "-0.5"] {
+        assert!(warning[0].contains(needle), "{needle} in {stderr}");
     }
 }

@@ -72,13 +72,15 @@ where
         });
     }
     options.validate()?;
-    Ok(Shader::new(options, camera).dispatch(Frame {
-        scene,
-        camera,
-        region,
-        frame,
-        rows_done,
-    }))
+    Ok(
+        Shader::new(options, camera, scene.materials()).dispatch(Frame {
+            scene,
+            camera,
+            region,
+            frame,
+            rows_done,
+        }),
+    )
 }
 
 /// A threaded frame: one task per band of [`TILE`] rows, traced in tiles.

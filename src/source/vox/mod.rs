@@ -3,15 +3,21 @@
 //! memory follows the voxel count however far apart the instances stand;
 //! a box that meets no chunk is known empty without looking inside.
 
+use std::boxed::Box;
 use std::collections::HashMap;
 use std::format;
+use std::string::String;
 use std::vec::Vec;
 
 use glam::{IVec3, U8Vec3};
 
 use crate::geom::{IAabb, MAX_COORD};
+use crate::material::{MaterialKind, Materials};
+use crate::source::vox::robj::VoxSettings;
 use crate::source::vox::scene_graph::{placements, Placement, VoxError, MAX_PLACED};
 
+pub(crate) mod matl;
+pub(crate) mod robj;
 pub(crate) mod scene_graph;
 use crate::voxel::{fill_by_position, holds, Palette, Region, VoxelSource};
 
@@ -42,6 +48,12 @@ pub struct VoxModel {
     index: HashMap<IVec3, u32>,
     chunks: Vec<[u8; CHUNK_VOXELS]>,
     voxels: usize,
+    /// Materials of the palette entries voxels use (the rest diffuse).
+    materials: Box<Materials>,
+    /// Emissive voxels, sorted, so the light list is the same every load.
+    emitters: Vec<IVec3>,
+    settings: VoxSettings,
+    warnings: Vec<String>,
 }
 
 /// Offset of `pos` inside its chunk.
@@ -109,6 +121,10 @@ impl VoxModel {
             index: HashMap::new(),
             chunks: Vec::new(),
             voxels: 0,
+            materials: Box::new(Materials::all_diffuse()),
+            emitters: Vec::new(),
+            settings: robj::settings(bytes),
+            warnings: Vec::new(),
         };
         for p in &placed {
             for v in &data.models[p.model].voxels {
@@ -121,7 +137,67 @@ impl VoxModel {
                 max: IVec3::ONE,
             };
         }
+        model.read_materials(&data.materials);
         Ok(model)
+    }
+
+    /// Materials for the palette entries the placed voxels use (after
+    /// overlapping instances merged), and the list of emissive voxels.
+    fn read_materials(&mut self, matl: &[dot_vox::Material]) {
+        let mut used = [false; 256];
+        for chunk in &self.chunks {
+            for &m in chunk {
+                used[usize::from(m)] = true;
+            }
+        }
+        used[0] = false;
+        *self.materials = matl::materials(matl, &used, &mut self.warnings);
+        let glows = |m: u8| self.materials.get(m).kind() == MaterialKind::Emissive;
+        let mut emitters = Vec::new();
+        for (&key, &slot) in &self.index {
+            for (i, &m) in self.chunks[slot as usize].iter().enumerate() {
+                if m != 0 && glows(m) {
+                    let i = i as i32;
+                    let local = IVec3::new(
+                        i & (CHUNK - 1),
+                        (i >> CHUNK_LOG) & (CHUNK - 1),
+                        i >> (2 * CHUNK_LOG),
+                    );
+                    emitters.push((key << CHUNK_LOG) + local);
+                }
+            }
+        }
+        // The chunk index is a hash map: sort, so every load lists the
+        // emitters in one order (the order light samples pick them in).
+        emitters.sort_unstable_by_key(|p| (p.x, p.y, p.z));
+        self.emitters = emitters;
+    }
+
+    /// The materials of the palette entries the scene's voxels use, from
+    /// the file's MATL chunks; entries no voxel uses are diffuse.
+    #[must_use]
+    pub fn materials(&self) -> &Materials {
+        &self.materials
+    }
+
+    /// The emissive voxels, sorted by position: the light list.
+    #[must_use]
+    pub fn emitters(&self) -> &[IVec3] {
+        &self.emitters
+    }
+
+    /// The file's sun, sky and bounce settings (its rOBJ chunks).
+    #[must_use]
+    pub fn settings(&self) -> &VoxSettings {
+        &self.settings
+    }
+
+    /// One line per MATL value that was not a number, out of range or
+    /// missing (naming the material id and key), and per kind of material
+    /// not simulated.
+    #[must_use]
+    pub fn warnings(&self) -> &[String] {
+        &self.warnings
     }
 
     /// Sets the voxel at `pos` to `material`, growing the bounds.

@@ -1,0 +1,146 @@
+//! Materials from a `.vox` file's MATL chunks (as dot_vox reads them), for
+//! the palette entries the scene's voxels use.
+//!
+//! Keys read, by `_type`: `_metal`: `_metal` (or the older `_weight`) as
+//! metalness, `_rough`; `_glass`: `_trans` (or `_alpha`, or `_weight`) as
+//! transparency, `_ior` (MagicaVoxel stores the index minus 1, so the index
+//! is `1 + _ior`), `_rough`; `_emit`: `_emit` (or `_weight`) and `_flux`;
+//! `_diffuse`: nothing. `_media`, `_blend` and cloud materials are rendered
+//! diffuse (volumes are not simulated); `_sp`, `_spec`, `_g`, `_att`,
+//! `_ldr`, `_d`, `_plastic` are ignored.
+//!
+//! Emission: MagicaVoxel documents no formula for `_emit` and `_flux`, and
+//! importers differ (seen: `emit * 10 * flux`, `emit * (1 + flux)`,
+//! `5 emit (1 + flux)^2`). voxtrace takes radiance `color * emit * (1 +
+//! flux)`: `_emit 1, _flux 0` glows with exactly its color, and each step
+//! of flux adds that much again.
+
+use std::format;
+use std::string::String;
+use std::vec::Vec;
+
+use dot_vox::Material as VoxMaterial;
+
+use crate::material::{Material, Materials};
+
+/// One MATL key's value: `Ok(None)` when absent, `Err` text when it is
+/// not a number.
+fn number(m: &VoxMaterial, key: &str) -> Result<Option<f32>, String> {
+    match m.properties.get(key) {
+        None => Ok(None),
+        Some(text) => match text.trim().parse::<f32>() {
+            Ok(v) if v.is_finite() => Ok(Some(v)),
+            _ => Err(format!(
+                "material {}: {key} is '{text}', not a number",
+                m.id
+            )),
+        },
+    }
+}
+
+/// Reads materials for the entries `used` marks, warning (one line each,
+/// naming the material id and key) about values that are not numbers, out
+/// of range or missing; each such value falls back to the nearest usable
+/// one.
+pub(crate) fn materials(
+    matl: &[VoxMaterial],
+    used: &[bool; 256],
+    warnings: &mut Vec<String>,
+) -> Materials {
+    let mut table = Materials::all_diffuse();
+    let mut media = Vec::new();
+    for m in matl {
+        let Ok(index) = u8::try_from(m.id) else {
+            continue;
+        };
+        if index == 0 || !used[usize::from(index)] {
+            continue;
+        }
+        // `required`: the key that says how much of the type the material has;
+        // without it the type's full strength is used, with a warning.
+        let mut get =
+            |keys: &[&str], required: bool, default: f32, lo: f32, hi: f32, what: &str| -> f32 {
+                for key in keys {
+                    match number(m, key) {
+                        Ok(None) => continue,
+                        Ok(Some(v)) if (lo..=hi).contains(&v) => return v,
+                        Ok(Some(v)) => {
+                            let clamped = v.clamp(lo, hi);
+                            warnings.push(format!(
+                                "material {index}: {key} is {v}, {what}; using {clamped}"
+                            ));
+                            return clamped;
+                        }
+                        Err(e) => {
+                            warnings.push(format!("{e}; using {default}"));
+                            return default;
+                        }
+                    }
+                }
+                if required {
+                    warnings.push(format!(
+                        "material {index}: {} is missing; using {default}",
+                        keys[0]
+                    ));
+                }
+                default
+            };
+        let unit = "outside [0, 1]";
+        let material = match m.material_type().unwrap_or("_diffuse") {
+            "_diffuse" => None,
+            "_metal" => {
+                let metal = get(&["_metal", "_weight"], true, 1.0, 0.0, 1.0, unit);
+                let rough = get(&["_rough"], false, 0.0, 0.0, 1.0, unit);
+                Material::metal(metal, rough).ok()
+            }
+            "_glass" => {
+                let trans = get(&["_trans", "_alpha", "_weight"], true, 1.0, 0.0, 1.0, unit);
+                let rough = get(&["_rough"], false, 0.0, 0.0, 1.0, unit);
+                let ior = get(
+                    &["_ior"],
+                    false,
+                    0.5,
+                    0.0,
+                    f32::MAX,
+                    "below 0 (an index of refraction below 1)",
+                );
+                Material::glass(trans, 1.0 + ior, rough).ok()
+            }
+            "_emit" => {
+                let emit = get(
+                    &["_emit", "_weight"],
+                    true,
+                    1.0,
+                    0.0,
+                    f32::MAX,
+                    "negative emission",
+                );
+                let flux = get(&["_flux"], false, 0.0, 0.0, f32::MAX, "negative flux");
+                (emit > 0.0)
+                    .then(|| Material::emissive(emit * (1.0 + flux)).ok())
+                    .flatten()
+            }
+            "_media" | "_blend" | "_cloud" => {
+                media.push(index);
+                None
+            }
+            other => {
+                warnings.push(format!(
+                    "material {index}: _type '{other}' is unknown; rendering it diffuse"
+                ));
+                None
+            }
+        };
+        if let Some(material) = material {
+            table.set(index, material);
+        }
+    }
+    if !media.is_empty() {
+        let ids: Vec<String> = media.iter().map(|i| format!("{i}")).collect();
+        warnings.push(format!(
+            "materials {} are media or cloud, not simulated: rendered diffuse",
+            ids.join(", ")
+        ));
+    }
+    table
+}

@@ -1,0 +1,230 @@
+//! The render settings of a `.vox` file: its rOBJ chunks (sun, sky,
+//! bounces), which dot_vox skips, read by a small reader of the chunk
+//! stream of its own.
+//!
+//! Keys read: `_inf` (the sun): `_i` intensity, `_k` color, `_angle`
+//! (two angles in degrees: elevation above the ground plane, then azimuth
+//! from +x toward +y in MagicaVoxel's z-up axes), `_area` (the disk's
+//! angular radius as a fraction of a right angle); `_uni` (a uniform sky):
+//! `_i`, `_k`; `_bounce`: `_diffuse`, `_specular`. Everything else
+//! (`_env`, `_ibl`, `_atm`, `_fog_uni`, `_lens`, `_film`, `_bloom`,
+//! `_ground`, `_bg`, `_edge`, `_grid`, `_setting`, `_scatter`, `_energy`,
+//! `_disk`, and the rLIT/rAIR/POST chunks of older files) is ignored.
+
+use std::collections::HashMap;
+use std::string::String;
+use std::vec::Vec;
+
+use glam::Vec3;
+
+/// The light and bounce settings a file holds.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct VoxSettings {
+    /// The sun: direction toward it (voxtrace's y-up axes), radiance
+    /// scale (color times intensity) and angular radius in radians.
+    pub sun: Option<VoxSun>,
+    /// A uniform sky's radiance (color times intensity).
+    pub sky: Option<Vec3>,
+    /// Diffuse and specular bounce counts.
+    pub bounces: Option<(u8, u8)>,
+}
+
+/// A file's sun (`_inf`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VoxSun {
+    /// Unit direction toward the sun, y up.
+    pub direction: Vec3,
+    /// Intensity times the color's brightest channel.
+    pub intensity: f32,
+    /// Angular radius in radians.
+    pub radius: f32,
+}
+
+/// A little-endian `u32` at `at`, if the bytes are there.
+fn u32_at(bytes: &[u8], at: usize) -> Option<u32> {
+    let b = bytes.get(at..at.checked_add(4)?)?;
+    Some(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+}
+
+/// A MagicaVoxel DICT (count, then length-prefixed key and value strings).
+fn dict(bytes: &[u8]) -> Option<HashMap<String, String>> {
+    let count = u32_at(bytes, 0)? as usize;
+    let mut at = 4;
+    let mut out = HashMap::new();
+    let text = |at: &mut usize| -> Option<String> {
+        let len = u32_at(bytes, *at)? as usize;
+        let start = at.checked_add(4)?;
+        let s = bytes.get(start..start.checked_add(len)?)?;
+        *at = start + len;
+        Some(String::from_utf8_lossy(s).into_owned())
+    };
+    // Each pair takes at least 8 bytes: a count past that is malformed.
+    if count > bytes.len() / 8 {
+        return None;
+    }
+    for _ in 0..count {
+        let key = text(&mut at)?;
+        let value = text(&mut at)?;
+        out.insert(key, value);
+    }
+    Some(out)
+}
+
+/// The dictionaries of every rOBJ chunk among MAIN's children, in file
+/// order; malformed chunks are skipped (dot_vox has read the file already).
+fn robj_dicts(bytes: &[u8]) -> Vec<HashMap<String, String>> {
+    let mut out = Vec::new();
+    // "VOX ", version, then MAIN: id, content size, children size.
+    if bytes.get(..4) != Some(b"VOX ") || bytes.get(8..12) != Some(b"MAIN") {
+        return out;
+    }
+    let Some(content) = u32_at(bytes, 12) else {
+        return out;
+    };
+    let mut at = 20usize.saturating_add(content as usize);
+    while let (Some(id), Some(size), Some(children)) = (
+        bytes.get(at..at + 4),
+        u32_at(bytes, at + 4),
+        u32_at(bytes, at + 8),
+    ) {
+        let start = at + 12;
+        let Some(end) = start.checked_add(size as usize) else {
+            break;
+        };
+        if id == b"rOBJ" {
+            if let Some(d) = bytes.get(start..end).and_then(dict) {
+                out.push(d);
+            }
+        }
+        let Some(next) = end.checked_add(children as usize) else {
+            break;
+        };
+        at = next;
+    }
+    out
+}
+
+/// Numbers separated by spaces.
+fn numbers<const N: usize>(text: Option<&String>) -> Option<[f32; N]> {
+    let mut out = [0.0; N];
+    let mut parts = text?.split_whitespace();
+    for slot in &mut out {
+        *slot = parts
+            .next()?
+            .parse::<f32>()
+            .ok()
+            .filter(|v| v.is_finite())?;
+    }
+    Some(out)
+}
+
+/// Intensity `_i` times color `_k` (0-255 per channel).
+fn radiance(d: &HashMap<String, String>) -> Option<Vec3> {
+    let [i] = numbers::<1>(d.get("_i"))?;
+    let k = numbers::<3>(d.get("_k")).unwrap_or([255.0; 3]);
+    let r = Vec3::from(k) * (i.max(0.0) / 255.0);
+    r.is_finite().then_some(r)
+}
+
+/// The settings of the file in `bytes`.
+pub(crate) fn settings(bytes: &[u8]) -> VoxSettings {
+    let mut s = VoxSettings::default();
+    for d in robj_dicts(bytes) {
+        match d.get("_type").map(String::as_str) {
+            Some("_inf") => {
+                let Some(light) = radiance(&d) else { continue };
+                let [elevation, azimuth] = numbers::<2>(d.get("_angle")).unwrap_or([50.0, 50.0]);
+                let (e, a) = (elevation.to_radians(), azimuth.to_radians());
+                let (cos, sin) = (libm::cosf, libm::sinf);
+                // MagicaVoxel (x, y, z) z-up is voxtrace (x, z, -y).
+                let mv = Vec3::new(cos(e) * cos(a), cos(e) * sin(a), sin(e));
+                let direction = Vec3::new(mv.x, mv.z, -mv.y);
+                let [area] = numbers::<1>(d.get("_area")).unwrap_or([0.0]);
+                s.sun = Some(VoxSun {
+                    direction,
+                    intensity: light.max_element(),
+                    radius: (area.clamp(0.0, 1.0) * core::f32::consts::FRAC_PI_2).min(1.5),
+                });
+            }
+            Some("_uni") => s.sky = radiance(&d),
+            Some("_bounce") => {
+                let count =
+                    |key: &str| numbers::<1>(d.get(key)).map(|[v]| v.clamp(0.0, 255.0) as u8);
+                if let (Some(diffuse), Some(specular)) = (count("_diffuse"), count("_specular")) {
+                    s.bounces = Some((diffuse, specular));
+                }
+            }
+            _ => {}
+        }
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A file of MAIN with one rOBJ chunk holding `pairs`.
+    fn file(pairs: &[(&str, &str)]) -> Vec<u8> {
+        let mut d = Vec::new();
+        d.extend_from_slice(&(pairs.len() as u32).to_le_bytes());
+        for (k, v) in pairs {
+            for s in [k, v] {
+                d.extend_from_slice(&(s.len() as u32).to_le_bytes());
+                d.extend_from_slice(s.as_bytes());
+            }
+        }
+        let mut chunk = b"rOBJ".to_vec();
+        chunk.extend_from_slice(&(d.len() as u32).to_le_bytes());
+        chunk.extend_from_slice(&0u32.to_le_bytes());
+        chunk.extend_from_slice(&d);
+        let mut out = b"VOX ".to_vec();
+        out.extend_from_slice(&150u32.to_le_bytes());
+        out.extend_from_slice(b"MAIN");
+        out.extend_from_slice(&0u32.to_le_bytes());
+        out.extend_from_slice(&(chunk.len() as u32).to_le_bytes());
+        out.extend_from_slice(&chunk);
+        out
+    }
+
+    #[test]
+    fn reads_the_sun_sky_and_bounces() {
+        let sun = settings(&file(&[
+            ("_type", "_inf"),
+            ("_i", "0.6"),
+            ("_k", "255 255 255"),
+            ("_angle", "90 0"),
+            ("_area", "0.1"),
+        ]));
+        let s = sun.sun.unwrap();
+        // Straight up in MagicaVoxel's z is straight up in voxtrace's y.
+        assert!((s.direction - Vec3::Y).length() < 1e-6, "{:?}", s.direction);
+        assert!((s.intensity - 0.6).abs() < 1e-6);
+        assert!((s.radius - 0.1 * core::f32::consts::FRAC_PI_2).abs() < 1e-6);
+        let sky = settings(&file(&[
+            ("_type", "_uni"),
+            ("_i", "0.5"),
+            ("_k", "255 0 255"),
+        ]));
+        assert_eq!(sky.sky, Some(Vec3::new(0.5, 0.0, 0.5)));
+        let b = settings(&file(&[
+            ("_type", "_bounce"),
+            ("_diffuse", "2"),
+            ("_specular", "5"),
+        ]));
+        assert_eq!(b.bounces, Some((2, 5)));
+    }
+
+    #[test]
+    fn garbage_gives_no_settings_and_no_panic() {
+        assert_eq!(settings(b"VOX "), VoxSettings::default());
+        let mut f = file(&[("_type", "_uni"), ("_i", "x")]);
+        assert_eq!(settings(&f), VoxSettings::default());
+        f.truncate(f.len() - 3);
+        assert_eq!(settings(&f), VoxSettings::default());
+        let mut huge = file(&[]);
+        let n = huge.len();
+        huge[n - 4..].copy_from_slice(&u32::MAX.to_le_bytes());
+        assert_eq!(settings(&huge), VoxSettings::default());
+    }
+}
