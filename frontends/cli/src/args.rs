@@ -163,9 +163,11 @@ pub struct Args {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8))]
     pub bounces: Option<u8>,
 
-    /// Worker threads for the build and the render; 1 runs the scalar
-    /// single-threaded path [default: all cores].
-    #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
+    /// Worker threads for the build and the render, 1 to 256; 1 runs the
+    /// scalar single-threaded path [default: all cores]. (More threads than
+    /// that only reserve stacks: 65535 of them do not fit in a small
+    /// address space.)
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..=256))]
     pub threads: Option<u16>,
 
     /// Print `key: value` statistics to stderr.
