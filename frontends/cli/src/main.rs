@@ -5,6 +5,7 @@
 //! problem.
 
 mod args;
+mod effects;
 mod errors;
 mod farm;
 mod memory;
@@ -16,13 +17,11 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
-use clap::parser::ValueSource;
 use clap::{ArgMatches, CommandFactory, FromArgMatches};
 use voxtrace::glam::Vec3;
 use voxtrace::{
-    Background, Bounces, Camera, CameraSettings, EffectPlan, Fog, IAabb, Lighting, Look, Occlusion,
-    Projection, RayStats, Rect, RenderOptions, SceneMaterials, VoxModel, VoxelGenerator,
-    VoxelSource,
+    Background, Camera, CameraSettings, EffectPlan, IAabb, Look, RayStats, Rect, RenderOptions,
+    VoxModel, VoxelGenerator, VoxelSource,
 };
 use voxtrace_cli::atomic::{remove_on_signal, AtomicFile};
 use voxtrace_cli::{
@@ -30,8 +29,9 @@ use voxtrace_cli::{
 };
 
 use args::Args;
+use effects::{ignored_effects, ignored_flags, materials_of, render_options, unused_in_path};
 use progress::{Progress, Spinner};
-use view::{camera_settings, describe, BackgroundArg, ProjectionArg, Stage};
+use view::{camera_settings, describe, Stage};
 
 fn main() -> ExitCode {
     if let Some(code) = farm::subcommand() {
@@ -68,11 +68,6 @@ fn clap_failure(e: &clap::Error, argv: &[String]) -> ExitCode {
     }
     eprintln!("{}", errors::one_line(e, argv));
     ExitCode::from(2)
-}
-
-/// Whether the flag `id` was given on the command line (not a default).
-fn given(matches: &ArgMatches, id: &str) -> bool {
-    matches.value_source(id) == Some(ValueSource::CommandLine)
 }
 
 /// A seed from the clock and process id: different per run, printed so the
@@ -269,160 +264,6 @@ fn export(args: &Args, path: &Path) -> Result<(), String> {
         eprintln!("file_bytes: {}", bytes.len());
     }
     Ok(())
-}
-
-/// A model's materials and light list as the renderer takes them.
-fn materials_of(model: &VoxModel) -> SceneMaterials<'_> {
-    SceneMaterials {
-        table: model.materials(),
-        emitters: model.emitters(),
-    }
-}
-
-/// The light of path-traced frames: the file's sun, sky and bounces where
-/// it has them, `--bounces` over the file's.
-fn lighting(args: &Args, model: Option<&VoxModel>) -> Lighting {
-    let mut light = Lighting::DEFAULT;
-    let settings = model.map(|m| *m.settings()).unwrap_or_default();
-    if let (Some(sun), None) = (settings.sun, args.sun) {
-        light.sun_intensity = sun.intensity;
-        light.sun_radius = sun.radius;
-    }
-    light.sky = settings.sky.or(light.sky);
-    if let Some((diffuse, specular)) = settings.bounces {
-        light.bounces = Bounces { diffuse, specular };
-    }
-    if let Some(n) = args.bounces {
-        light.bounces = Bounces {
-            diffuse: n,
-            specular: n,
-        };
-        light.path_trace = true;
-    }
-    light
-}
-
-/// Notes for flags a path-traced frame does not use (it lights with its
-/// own light rays and bounces).
-fn unused_in_path(asked: &RenderOptions) -> Vec<String> {
-    let mut unused = Vec::new();
-    if asked.shadows {
-        unused.push("--shadows");
-    }
-    if asked.occlusion.is_some() {
-        unused.push("--ao");
-    }
-    if unused.is_empty() {
-        return Vec::new();
-    }
-    vec![format!(
-        "the scene is path-traced (its light rays cast the shadows): ignoring {}",
-        unused.join(", ")
-    )]
-}
-
-/// The effects the flags (and a .vox file's settings) ask for; fog
-/// thickens over the scene's scale.
-fn render_options(args: &Args, bounds: IAabb, model: Option<&VoxModel>) -> RenderOptions {
-    let BackgroundArg(background) = args.background;
-    let file_sun = model.and_then(|m| m.settings().sun).map(|s| s.direction);
-    RenderOptions {
-        flat: args.flat,
-        debug: args.debug,
-        sun: args
-            .sun
-            .map_or(Some(file_sun.unwrap_or(voxtrace::DEFAULT_SUN)), |sun| sun.0),
-        shadows: args.shadows,
-        occlusion: args.ao.map(|rays| Occlusion {
-            rays,
-            distance: args.ao_distance,
-        }),
-        samples: args.spp,
-        fog: args.fog.then_some(Fog {
-            // 3 x --size for the terrain: one and a half times the volume's side.
-            distance: 1.5 * bounds.size().max_element() as f32,
-        }),
-        background,
-        lighting: lighting(args, model),
-    }
-}
-
-/// One note for each effect asked for that cannot run, so that a user is
-/// not left wondering why it did not.
-fn ignored_effects(asked: &RenderOptions) -> Vec<String> {
-    let mut notes = Vec::new();
-    let runs = asked.effective();
-    if asked.shadows && !runs.shadows && asked.sun.is_none() && !(asked.flat || asked.debug) {
-        notes.push("the scene has no light (--sun none): --shadows traces no shadow rays".into());
-    }
-    let view = if asked.flat { "--flat" } else { "--debug" };
-    let mut ignored = Vec::new();
-    if asked.flat && asked.debug {
-        ignored.push("--debug");
-    }
-    if asked.flat || asked.debug {
-        if asked.shadows {
-            ignored.push("--shadows");
-        }
-        if asked.occlusion.is_some() {
-            ignored.push("--ao");
-        }
-        if asked.samples > 1 {
-            ignored.push("--spp");
-        }
-        if asked.fog.is_some() {
-            ignored.push("--fog");
-        }
-    }
-    if !ignored.is_empty() {
-        notes.push(format!(
-            "{view} draws no effects: ignoring {}",
-            ignored.join(", ")
-        ));
-    }
-    notes
-}
-
-/// One note for each flag given that changes nothing.
-fn ignored_flags(
-    args: &Args,
-    matches: &ArgMatches,
-    settings: &CameraSettings,
-    format: output::Format,
-) -> Vec<String> {
-    let mut notes = Vec::new();
-    let vox = args.vox.is_some();
-    if vox && args.seed.is_some() {
-        notes.push("--seed shapes the terrain; a --vox scene does not use it".to_string());
-    }
-    if vox && given(matches, "size") {
-        notes.push("--size sets the terrain's volume; a --vox scene has its own".to_string());
-    }
-    if given(matches, "ao_distance") && args.ao.is_none() {
-        notes.push("--ao-distance has no effect without --ao".to_string());
-    }
-    let orthographic = matches!(settings.projection, Projection::Orthographic { .. });
-    if given(matches, "ortho_height") && !orthographic {
-        notes.push(
-            "--ortho-height has no effect on a perspective camera (add --projection orthographic)"
-                .to_string(),
-        );
-    }
-    if given(matches, "fov") && orthographic {
-        notes
-            .push("--fov has no effect on an orthographic camera (see --ortho-height)".to_string());
-    }
-    if args.projection == ProjectionArg::Perspective && given(matches, "projection") && orthographic
-    {
-        notes.push("--view iso is orthographic: ignoring --projection perspective".to_string());
-    }
-    if args.background.0 == Background::Transparent && !output::has_alpha(format) {
-        notes.push(
-            "this format has no alpha channel: --background transparent writes black there"
-                .to_string(),
-        );
-    }
-    notes
 }
 
 /// What every frame of one run shares.
