@@ -13,6 +13,7 @@
 use glam::IVec3;
 
 use crate::geom::IAabb;
+use crate::scene::WalkMemory;
 use crate::voxel::Palette;
 
 pub(crate) mod beam;
@@ -51,19 +52,13 @@ pub(crate) fn child_rank(children: u8, octant: u32) -> u32 {
     u32::from(ONES[usize::from(children) & ((1 << octant) - 1)])
 }
 
-/// Offset of child octant `i` (`x | y << 1 | z << 2`) in units of half a
-/// side: the inverse of [`octant`], for the builders, the beam and anyone
-/// else who turns an octant back into a corner.
+/// Offset of child octant `i` in units of half a side, for the builders,
+/// the beam and anyone else who turns an octant back into a corner. An
+/// octant's index is `x | y << 1 | z << 2`, each bit set for the upper half
+/// of that axis; children are stored in this order.
 #[inline]
 pub(crate) fn child_offset(i: usize) -> IVec3 {
     IVec3::new((i & 1) as i32, ((i >> 1) & 1) as i32, ((i >> 2) & 1) as i32)
-}
-
-/// Index of a child octant: `x | y << 1 | z << 2`, each bit set for the upper
-/// half of that axis. Children are stored in this order.
-#[inline]
-pub(crate) fn octant(upper: glam::BVec3) -> u32 {
-    u32::from(upper.x) | u32::from(upper.y) << 1 | u32::from(upper.z) << 2
 }
 
 /// How a brick stores the materials of its solid voxels.
@@ -181,42 +176,11 @@ pub struct OctreeScene<N, M> {
 
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// The material at `pos` (0 for empty or outside the bounds): a
-    /// descent from the root. (Tracing does not use it: it keeps its path.)
+    /// descent from the root, the one a walk's start-cell lookup makes
+    /// with a memory that knows nothing yet.
     #[must_use]
     pub fn material(&self, pos: IVec3) -> u8 {
-        if !self.bounds.contains(pos) {
-            return 0;
-        }
-        let nodes = self.nodes.as_ref();
-        let mut node = self.root;
-        let mut corner = self.bounds.min;
-        let mut size = self.root_size;
-        loop {
-            match node.0 {
-                NodeKind::Branch { children, first } => {
-                    size >>= 1;
-                    let upper = (pos - corner).cmpge(IVec3::splat(size));
-                    corner += IVec3::select(upper, IVec3::splat(size), IVec3::ZERO);
-                    let i = octant(upper);
-                    if children & (1 << i) == 0 {
-                        return 0;
-                    }
-                    node = nodes[(first + child_rank(children, i)) as usize];
-                }
-                NodeKind::Solid(material) => return material,
-                NodeKind::Brick {
-                    occupancy,
-                    materials,
-                } => {
-                    let bit = brick_bit(pos - corner);
-                    return if occupancy >> bit & 1 == 0 {
-                        0
-                    } else {
-                        self.brick_material(occupancy, materials, bit)
-                    };
-                }
-            }
-        }
+        self.material_with(pos, &mut WalkMemory::new())
     }
 
     /// The palette the materials refer to.
