@@ -56,6 +56,15 @@ impl Walk {
         (start, face)
     }
 
+    /// The part of a ray's direction the start rule reads (which axes it
+    /// moves up along, which down), as six bits: rays from one origin with
+    /// equal classes start in the same cell with the same face.
+    #[inline]
+    pub(crate) fn start_class(ray: &Ray) -> u32 {
+        let (up, down) = directions(ray);
+        up.bitmask() | down.bitmask() << 3
+    }
+
     /// The walk in its first cell inside `bounds` at or after `not_before`.
     fn begin(ray: &Ray, bounds: &IAabb, not_before: Key) -> Option<Walk> {
         let (origin, dir, inv_dir) = (ray.origin(), ray.dir(), ray.inv_dir());
@@ -275,19 +284,27 @@ pub(crate) fn start_rule(ray: &Ray) -> ([i32; 3], [i32; 3], [Key; 3]) {
     (step.to_array(), start.to_array(), [key(0), key(1), key(2)])
 }
 
+/// The axes a ray moves up along, and down: an infinite reciprocal (a
+/// subnormal component) would turn a crossing at distance 0 into NaN; such
+/// an axis never reaches a plane in f32 anyway, so it counts as not moving.
+#[inline]
+fn directions(ray: &Ray) -> (BVec3A, BVec3A) {
+    let (_, dir, inv_dir) = ray.lanes();
+    let finite_inv = inv_dir.abs().cmplt(Vec3A::INFINITY);
+    let moving = dir.cmpne(Vec3A::ZERO) & finite_inv;
+    (
+        moving & dir.cmpgt(Vec3A::ZERO),
+        moving & dir.cmplt(Vec3A::ZERO),
+    )
+}
+
 /// The start rule on three lanes: the steps, the start cell, and the axes
 /// whose entry plane the origin lies on.
 #[inline]
 fn start_lanes(ray: &Ray) -> (IVec3, IVec3, BVec3A) {
-    let origin = Vec3A::from(ray.origin());
-    let dir = Vec3A::from(ray.dir());
-    // An infinite reciprocal (a subnormal component) would turn a crossing
-    // at distance 0 into NaN; such an axis never reaches a plane in f32
-    // anyway, so it counts as not moving.
-    let finite_inv = Vec3A::from(ray.inv_dir()).abs().cmplt(Vec3A::INFINITY);
-    let moving = dir.cmpne(Vec3A::ZERO) & finite_inv;
-    let up = moving & dir.cmpgt(Vec3A::ZERO);
-    let down = moving & dir.cmplt(Vec3A::ZERO);
+    let (origin, _, _) = ray.lanes();
+    let (up, down) = directions(ray);
+    let moving = up | down;
     let ones = |mask: BVec3A| {
         let bits = mask.bitmask();
         IVec3::new(
