@@ -45,8 +45,7 @@ impl Walk {
     /// a guess is off and the stepwise search must decide.
     #[inline]
     pub(super) fn place_by_guess(&mut self, key: Key) -> Option<bool> {
-        let origin = Vec3A::from(self.origin);
-        let inv_dir = Vec3A::from(self.inv_dir);
+        let (origin, inv_dir) = (self.origin, self.inv_dir);
         // Cell coordinates as floats, all on four lanes: exact, since every
         // coordinate below lies within the volume (|c| <= 2^22 + 1) but a
         // saturated start cell, which keeps its order against them.
@@ -66,7 +65,7 @@ impl Walk {
         // The cell of the point at the key, clamped into the searched range
         // (a NaN or infinite point clamps to one end): any guess is sound,
         // the tests below decide.
-        let point = origin + Vec3A::from(self.dir) * key.t;
+        let point = origin + self.dir * key.t;
         let c = point.floor().max(from.min(limit)).min(from.max(limit));
         // Entry and exit planes of `c`: moving up a cell is entered through
         // its lower plane and left through its upper one.

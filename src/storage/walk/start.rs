@@ -67,7 +67,7 @@ impl Walk {
 
     /// The walk in its first cell inside `bounds` at or after `not_before`.
     fn begin(ray: &Ray, bounds: &IAabb, not_before: Key) -> Option<Walk> {
-        let (origin, dir, inv_dir) = (ray.origin(), ray.dir(), ray.inv_dir());
+        let (origin, dir, inv_dir) = ray.lanes();
         let (step, start, start_keys) = start_rule(ray);
         let step = IVec3::from_array(step);
         let start = IVec3::from_array(start);
