@@ -14,11 +14,7 @@
 use glam::{BVec3A, IVec3, Vec3A};
 
 use crate::geom::{IAabb, Ray};
-use crate::storage::walk::{start_rule, Key, Walk};
-
-/// Origins within this distance of 0 on every axis take the shortcuts:
-/// casts of their coordinates truncate exactly.
-const EXACT: f32 = 8_388_608.0;
+use crate::storage::walk::{start_rule, Key, Walk, EXACT};
 
 /// Before every crossing.
 const BEFORE: Key = Key {

@@ -41,7 +41,7 @@ use crate::geom::{Face, IAabb};
 mod guess;
 mod start;
 
-pub(crate) use start::start_rule;
+pub(crate) use start::{start_rule, EXACT};
 
 /// A crossing's place in the ray's visiting order: by time, then by axis.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -298,6 +298,11 @@ fn directions(ray: &Ray) -> (BVec3A, BVec3A) {
     )
 }
 
+/// 2^23: below it, casts of coordinates truncate exactly and integers and
+/// their neighbours are exact floats, so origins below it on every axis
+/// take the shortcuts (here the start rule on float lanes).
+pub(crate) const EXACT: f32 = 8_388_608.0;
+
 /// The start rule on three lanes: the steps, the start cell, and the axes
 /// whose entry plane the origin lies on.
 #[inline]
@@ -315,12 +320,21 @@ fn start_lanes(ray: &Ray) -> (IVec3, IVec3, BVec3A) {
     };
     // The start cell's entry plane is floor(o) moving up, ceil(o) moving
     // down: the origin lies on it exactly when it is an integer, and then a
-    // ray moving down starts in the cell below. Truncation saturates as
-    // `floor_cell` does (saturated cells of huge origins lie outside every
-    // volume).
+    // ray moving down starts in the cell below.
+    let steps = ones(up) - ones(down);
+    if origin.abs().cmplt(Vec3A::splat(EXACT)).all() {
+        // The common case, on float lanes: below 2^23 the floor, and one
+        // less, are exact floats of exact integers.
+        let floor = origin.floor();
+        let on_plane = moving & floor.cmpeq(origin);
+        let below = Vec3A::select(on_plane & down, Vec3A::ONE, Vec3A::ZERO);
+        return (steps, (floor - below).as_ivec3(), on_plane);
+    }
+    // Truncation saturates as `floor_cell` does (saturated cells of huge
+    // origins lie outside every volume).
     let truncated = origin.as_ivec3();
     let floor = truncated.saturating_sub(ones(truncated.as_vec3a().cmpgt(origin)));
     let on_plane = moving & floor.as_vec3a().cmpeq(origin);
     let start = floor.saturating_sub(ones(on_plane & down));
-    (ones(up) - ones(down), start, on_plane)
+    (steps, start, on_plane)
 }
