@@ -116,9 +116,11 @@ impl IAabb {
 /// so traversal computes every plane crossing as `(plane - origin) * inv_dir`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {
-    origin: Vec3,
-    dir: Vec3,
-    inv_dir: Vec3,
+    // Four-lane vectors: the walks read them as lanes, and a scalar
+    // `Vec3` would be widened again for every question.
+    origin: Vec3A,
+    dir: Vec3A,
+    inv_dir: Vec3A,
 }
 
 impl Ray {
@@ -129,7 +131,13 @@ impl Ray {
     /// fine: the direction is first divided by its largest component, so
     /// the length never overflows or underflows.
     pub fn new(origin: Vec3, dir: Vec3) -> Result<Self, Error> {
-        if !origin.is_finite() || !dir.is_finite() {
+        Ray::from_lanes(origin.into(), dir.into())
+    }
+
+    /// [`Ray::new`] on four-lane vectors (the same bits).
+    #[inline]
+    pub(crate) fn from_lanes(origin: Vec3A, dir: Vec3A) -> Result<Self, Error> {
+        if !(origin.is_finite() && dir.is_finite()) {
             return Err(Error::InvalidRay);
         }
         let largest = dir.abs().max_element();
@@ -139,39 +147,46 @@ impl Ray {
         // On four lanes: one division instruction for three components,
         // each lane rounded exactly as a scalar division would be. The
         // squared length is summed in scalar order, x then y then z.
-        let scaled = Vec3A::from(dir) / largest;
+        let scaled = dir / largest;
         let squares = scaled * scaled;
         let length = sqrt32(squares.x + squares.y + squares.z);
         let dir = scaled / length;
         Ok(Self {
             origin,
-            dir: dir.into(),
-            inv_dir: (Vec3A::ONE / dir).into(),
+            dir,
+            inv_dir: Vec3A::ONE / dir,
         })
     }
 
     /// Where the ray starts.
     #[must_use]
     pub fn origin(&self) -> Vec3 {
-        self.origin
+        self.origin.into()
     }
 
     /// The unit direction.
     #[must_use]
     pub fn dir(&self) -> Vec3 {
-        self.dir
+        self.dir.into()
     }
 
     /// `1 / dir` per component (infinite where the component is zero).
     #[must_use]
     pub fn inv_dir(&self) -> Vec3 {
-        self.inv_dir
+        self.inv_dir.into()
+    }
+
+    /// [`Ray::origin`], [`Ray::dir`] and [`Ray::inv_dir`] as the lanes
+    /// they are kept in.
+    #[inline]
+    pub(crate) fn lanes(&self) -> (Vec3A, Vec3A, Vec3A) {
+        (self.origin, self.dir, self.inv_dir)
     }
 
     /// The point at distance `t` along the ray.
     #[must_use]
     pub fn at(&self, t: f32) -> Vec3 {
-        self.origin + self.dir * t
+        (self.origin + self.dir * t).into()
     }
 }
 

@@ -84,7 +84,41 @@ pub struct WalkMemory<'s> {
     pub(crate) depth: usize,
     /// A position inside the node at `depth`, relative to the tree's corner.
     pub(crate) corner: IVec3,
+    /// The answer of the last start-cell lookup: rays from one origin (a
+    /// camera's, or one hit point's occlusion rays) share it.
+    pub(crate) start: StartSeen,
     scene: PhantomData<&'s ()>,
+}
+
+/// What the start cell of a ray held, for the rays that share its origin
+/// and the direction class the start rule reads ([`StartSeen::key_of`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct StartSeen {
+    /// Address of the scene that answered (0: nothing seen yet).
+    pub(crate) owner: usize,
+    /// The origin's bits and the direction class.
+    pub(crate) key: [u32; 4],
+    /// The hit a walk reports when its start cell is solid, `None` when
+    /// that cell is empty.
+    pub(crate) hit: Option<Hit>,
+}
+
+impl StartSeen {
+    /// Nothing seen yet.
+    const NONE: StartSeen = StartSeen {
+        owner: 0,
+        key: [0; 4],
+        hit: None,
+    };
+
+    /// The start cell and its face depend on the origin and, per axis, on
+    /// whether the ray moves along it and whether down: the start rule's
+    /// whole input. Equal keys, equal start cells.
+    #[inline]
+    pub(crate) fn key_of(ray: &Ray, class: u32) -> [u32; 4] {
+        let o = ray.origin();
+        [o.x.to_bits(), o.y.to_bits(), o.z.to_bits(), class]
+    }
 }
 
 impl WalkMemory<'_> {
@@ -96,6 +130,7 @@ impl WalkMemory<'_> {
             path: [0; MEMORY_PATH],
             depth: 0,
             corner: IVec3::ZERO,
+            start: StartSeen::NONE,
             scene: PhantomData,
         }
     }

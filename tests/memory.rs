@@ -87,3 +87,47 @@ fn a_memory_shared_by_two_scenes_is_ignored_by_the_other() {
         assert_eq!(remembered, scene.trace_counted(ray).hit, "ray {i}: {ray:?}");
     }
 }
+
+#[test]
+fn rays_sharing_an_origin_share_only_what_their_start_rule_shares() {
+    // Origins on planes, edges and corners of cells and inside them, each
+    // shot in every direction class (axes up, down, or not moved along),
+    // alternating two scenes and jumping between origins: a remembered
+    // start cell must be the one this scene, origin and class give.
+    let bounds = IAabb::new(IVec3::splat(-16), IVec3::splat(16));
+    let dense_fill = OctreeScene::build(&speckle(11, 70), bounds).unwrap();
+    let sparse_fill = OctreeScene::build(&speckle(12, 15), bounds).unwrap();
+    let mut rng = Rng::new(0x5eed_0003);
+    let mut memory = WalkMemory::new();
+    let component = |rng: &mut Rng| match rng.below(3) {
+        0 => 0.0,
+        1 => rng.range(0.1, 1.0),
+        _ => -rng.range(0.1, 1.0),
+    };
+    for i in 0..6000 {
+        let origin = Vec3::new(
+            rng.int(-3, 3) as f32 + [0.0, 0.5][rng.below(2) as usize],
+            rng.int(-3, 3) as f32 + [0.0, 0.25][rng.below(2) as usize],
+            rng.int(-3, 3) as f32,
+        );
+        let dir = Vec3::new(
+            component(&mut rng),
+            component(&mut rng),
+            component(&mut rng),
+        );
+        let Ok(ray) = Ray::new(origin, dir) else {
+            continue;
+        };
+        let scene = if rng.below(2) == 0 {
+            &dense_fill
+        } else {
+            &sparse_fill
+        };
+        let remembered = scene.trace_from_with(&ray, 0.0, &mut memory).hit;
+        assert_eq!(
+            remembered,
+            scene.trace_counted(&ray).hit,
+            "ray {i}: {ray:?}"
+        );
+    }
+}

@@ -2,7 +2,7 @@
 //! describes it: seven parameters, an orthonormal basis, and `get_ray(i, j)`
 //! through pixel centers.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 use crate::error::Error;
 use crate::frustum::Frustum;
@@ -97,10 +97,11 @@ impl CameraSettings {
 pub struct Camera {
     width: u32,
     height: u32,
-    center: Vec3,
-    pixel00: Vec3,
-    delta_u: Vec3,
-    delta_v: Vec3,
+    // Four-lane vectors: every ray is computed from them.
+    center: Vec3A,
+    pixel00: Vec3A,
+    delta_u: Vec3A,
+    delta_v: Vec3A,
     forward: Ray,
     spread: f32,
     /// Orthographic: every ray has the view direction `forward.dir()` and
@@ -164,10 +165,10 @@ impl Camera {
         let camera = Camera {
             width: s.width,
             height: s.height,
-            center: s.lookfrom,
-            pixel00,
-            delta_u,
-            delta_v,
+            center: s.lookfrom.into(),
+            pixel00: pixel00.into(),
+            delta_u: delta_u.into(),
+            delta_v: delta_v.into(),
             forward,
             // The angle one pixel row spans at the view's center.
             spread: delta_v.length() / s.focus_dist,
@@ -178,7 +179,7 @@ impl Camera {
         // valid, so is every pixel between them.
         let (wx, hy) = (s.width as f32, s.height as f32);
         for (x, y) in [(0.0, 0.0), (wx, 0.0), (0.0, hy), (wx, hy)] {
-            Ray::new(camera.center, camera.sample(x, y) - camera.center).map_err(|_| {
+            Ray::from_lanes(camera.center, camera.sample(x, y) - camera.center).map_err(|_| {
                 // Far out, the image plane rounds onto the position itself.
                 if camera.ray_error > 0.01 {
                     invalid(FAR)
@@ -215,10 +216,10 @@ impl Camera {
         Ok(Camera {
             width: s.width,
             height: s.height,
-            center: s.lookfrom,
-            pixel00,
-            delta_u,
-            delta_v,
+            center: s.lookfrom.into(),
+            pixel00: pixel00.into(),
+            delta_u: delta_u.into(),
+            delta_v: delta_v.into(),
             forward,
             spread: delta_v.length(),
             orthographic: true,
@@ -265,7 +266,7 @@ impl Camera {
     /// Camera position.
     #[must_use]
     pub fn position(&self) -> Vec3 {
-        self.center
+        self.center.into()
     }
 
     /// The angle (radians, small-angle) a pixel spans: at distance `t` a
@@ -279,7 +280,7 @@ impl Camera {
 
     /// The point on the image plane at continuous pixel coordinates
     /// `(x, y)`, where `(0.5, 0.5)` is the center of pixel `(0, 0)`.
-    fn sample(&self, x: f32, y: f32) -> Vec3 {
+    fn sample(&self, x: f32, y: f32) -> Vec3A {
         self.pixel00 + self.delta_u * (x - 0.5) + self.delta_v * (y - 0.5)
     }
 
@@ -312,7 +313,7 @@ impl Camera {
             return None;
         }
         // Continuous coordinates: pixel i spans [i, i + 1).
-        let corner = |x: u32, y: u32| self.sample(x as f32, y as f32) - self.center;
+        let corner = |x: u32, y: u32| Vec3::from(self.sample(x as f32, y as f32) - self.center);
         let corners = [
             corner(x0, y0),
             corner(x1, y0),
@@ -321,17 +322,18 @@ impl Camera {
         ];
         // The corners are computed as the rays are: both may stray by the
         // camera's rounding bound, so the frustum widens by twice it.
-        Frustum::through(self.center, corners, 2.0 * self.ray_error)
+        Frustum::through(self.center.into(), corners, 2.0 * self.ray_error)
     }
 
-    fn ray_to(&self, pixel: Vec3) -> Ray {
+    fn ray_to(&self, pixel: Vec3A) -> Ray {
         if self.orthographic {
             // Every ray along the view, from its image-plane point.
-            return Ray::new(pixel, self.forward.dir()).unwrap_or(self.forward);
+            let (_, dir, _) = self.forward.lanes();
+            return Ray::from_lanes(pixel, dir).unwrap_or(self.forward);
         }
         // Validation made this unreachable; the fallback keeps the promise
         // of never failing without a panic path.
-        Ray::new(self.center, pixel - self.center).unwrap_or(self.forward)
+        Ray::from_lanes(self.center, pixel - self.center).unwrap_or(self.forward)
     }
 }
 

@@ -14,11 +14,7 @@
 use glam::{BVec3A, IVec3, Vec3A};
 
 use crate::geom::{IAabb, Ray};
-use crate::storage::walk::{start_rule, Key, Walk};
-
-/// Origins within this distance of 0 on every axis take the shortcuts:
-/// casts of their coordinates truncate exactly.
-const EXACT: f32 = 8_388_608.0;
+use crate::storage::walk::{start_rule, Key, Walk, EXACT};
 
 /// Before every crossing.
 const BEFORE: Key = Key {
@@ -84,13 +80,12 @@ impl Entry {
     /// exact on three lanes at once.
     #[inline]
     fn inside(ray: &Ray, region: &IAabb) -> Option<Entry> {
-        let o = Vec3A::from(ray.origin());
+        let (o, d, inv) = ray.lanes();
         let strictly_inside =
             (o.cmpgt(region.min.as_vec3a()) & o.cmplt(region.max.as_vec3a())).all();
         if !strictly_inside {
             return None;
         }
-        let (d, inv) = (Vec3A::from(ray.dir()), Vec3A::from(ray.inv_dir()));
         let (floor, ceil) = floor_and_ceil(o);
         let moving = d.cmpne(Vec3A::ZERO) & inv.is_finite_mask();
         let down = moving & d.cmplt(Vec3A::ZERO);

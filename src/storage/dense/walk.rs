@@ -86,8 +86,9 @@ impl<B: AsRef<[u8]>> DenseScene<B> {
         let cellf = cell.as_vec3a();
         let dir = Vec3A::select(down, Vec3A::NEG_ONE, Vec3A::ONE);
         let exit = Vec3A::select(down, cellf, cellf + 1.0);
-        let origin = Vec3A::select(moving, ray.origin().into(), Vec3A::ZERO);
-        let inv_dir = Vec3A::select(moving, ray.inv_dir().into(), Vec3A::INFINITY);
+        let (ray_origin, _, ray_inv_dir) = ray.lanes();
+        let origin = Vec3A::select(moving, ray_origin, Vec3A::ZERO);
+        let inv_dir = Vec3A::select(moving, ray_inv_dir, Vec3A::INFINITY);
         let step = Vec3A::select(moving, dir, Vec3A::ZERO);
         let mut t = next_t;
         let mut plane = Vec3A::select(moving, exit + dir, Vec3A::ONE);

@@ -26,8 +26,8 @@ impl Lanes {
         let (origin, inv_dir, start, step) = walk.parts();
         let step = step.as_vec3a();
         Lanes {
-            origin: origin.into(),
-            inv_dir: inv_dir.into(),
+            origin,
+            inv_dir,
             start: start.as_vec3a(),
             up: step.cmpgt(Vec3A::ZERO),
             down: step.cmplt(Vec3A::ZERO),

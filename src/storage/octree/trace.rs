@@ -18,7 +18,7 @@ use glam::IVec3;
 
 use crate::frustum::Frustum;
 use crate::geom::{IAabb, Ray, MAX_COORD};
-use crate::scene::{Hit, Scene, Traced, WalkMemory, MEMORY_PATH};
+use crate::scene::{Hit, Scene, StartSeen, Traced, WalkMemory, MEMORY_PATH};
 use crate::storage::octree::lanes::Lanes;
 use crate::storage::octree::{brick_bit, child_rank, BrickMaterials, Node, NodeKind, OctreeScene};
 use crate::storage::walk::{Key, Walk};
@@ -70,11 +70,25 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
         // A clear distance of 0 mostly means the camera touches a solid
         // voxel, and then most rays hit the cell they start in: one lookup
         // answers them as the walk would, without building it.
+        // Rays sharing an origin (a camera's) and a direction class share
+        // that cell, so the memory answers them all after the first.
         if t_start == 0.0 {
-            let (cell, face) = Walk::start_cell(ray);
-            let material = self.material_with(cell, memory);
-            if material != 0 {
-                let hit = Hit::from_palette(&self.palette, cell, face, 0.0, material);
+            let owner = self as *const Self as usize;
+            let key = StartSeen::key_of(ray, Walk::start_class(ray));
+            let seen = memory.start;
+            let hit = if seen.owner == owner && seen.key == key {
+                seen.hit
+            } else {
+                let (cell, face) = Walk::start_cell(ray);
+                let material = self.material_with(cell, memory);
+                let hit = match material {
+                    0 => None,
+                    m => Hit::from_palette(&self.palette, cell, face, 0.0, m),
+                };
+                memory.start = StartSeen { owner, key, hit };
+                hit
+            };
+            if hit.is_some() {
                 return Traced { hit, steps: 0 };
             }
         }

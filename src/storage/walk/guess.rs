@@ -45,40 +45,37 @@ impl Walk {
     /// a guess is off and the stepwise search must decide.
     #[inline]
     pub(super) fn place_by_guess(&mut self, key: Key) -> Option<bool> {
-        let origin = Vec3A::from(self.origin);
-        let inv_dir = Vec3A::from(self.inv_dir);
-        let (lo, hi, start, step) = (self.lo, self.hi, self.start, self.step);
-        let up = step.cmpgt(IVec3::ZERO);
-        let moving = BVec3A::from_array(step.cmpne(IVec3::ZERO).into());
+        let (origin, inv_dir) = (self.origin, self.inv_dir);
+        // Cell coordinates as floats, all on four lanes: exact, since every
+        // coordinate below lies within the volume (|c| <= 2^22 + 1) but a
+        // saturated start cell, which keeps its order against them.
+        let step = self.step.as_vec3a();
+        let (up, moving) = (step.cmpgt(Vec3A::ZERO), step.cmpne(Vec3A::ZERO));
+        let (lo, hi, start) = (
+            self.lo.as_vec3a(),
+            self.hi.as_vec3a(),
+            self.start.as_vec3a(),
+        );
         // The search runs from the start (inside the volume) or the near
         // face to one past the far face, as `settle_all` searches it.
-        let near = IVec3::select(up, lo, hi - 1);
-        let limit = IVec3::select(up, hi, lo - 1);
+        let near = Vec3A::select(up, lo, hi - 1.0);
+        let limit = Vec3A::select(up, hi, lo - 1.0);
         let start_inside = start.cmpge(lo) & start.cmplt(hi);
-        let from = IVec3::select(start_inside, start, near);
-        // The cell of the point at the key, as `floor` (truncation, one
-        // down where that rounded up), clamped into the searched range: any
-        // guess is sound, the tests below decide.
-        let point = origin + Vec3A::from(self.dir) * key.t;
-        let truncated = point.as_ivec3();
-        let rounded_up = BVec3A::from_array(truncated.as_vec3a().cmpgt(point).into());
-        let guess = truncated - pick(rounded_up, IVec3::ONE, IVec3::ZERO);
-        let c = guess.clamp(from.min(limit), from.max(limit));
+        let from = Vec3A::select(start_inside, start, near);
+        // The cell of the point at the key, clamped into the searched range
+        // (a NaN or infinite point clamps to one end): any guess is sound,
+        // the tests below decide.
+        let point = origin + self.dir * key.t;
+        let c = point.floor().max(from.min(limit)).min(from.max(limit));
         // Entry and exit planes of `c`: moving up a cell is entered through
         // its lower plane and left through its upper one.
-        let entry_plane = IVec3::select(up, c, c + 1);
-        let exit_plane = IVec3::select(up, c + 1, c);
-        let at_start = BVec3A::from_array(c.cmpeq(start).into());
+        let entry_plane = Vec3A::select(up, c, c + 1.0);
+        let exit_plane = Vec3A::select(up, c + 1.0, c);
         let start_t = Vec3A::from_array(self.start_keys.map(|k| k.t));
-        let entry_t = Vec3A::select(
-            at_start,
-            start_t,
-            (entry_plane.as_vec3a() - origin) * inv_dir,
-        );
-        let exit_t = (exit_plane.as_vec3a() - origin) * inv_dir;
-        let at_from = BVec3A::from_array(c.cmpeq(from).into());
-        let at_limit = BVec3A::from_array(c.cmpeq(limit).into());
-        let entered = at_from | keys_before(entry_t, key);
+        let entry_t = Vec3A::select(c.cmpeq(start), start_t, (entry_plane - origin) * inv_dir);
+        let exit_t = (exit_plane - origin) * inv_dir;
+        let at_limit = c.cmpeq(limit);
+        let entered = c.cmpeq(from) | keys_before(entry_t, key);
         let not_left = at_limit | !keys_before(exit_t, key);
         if (!(entered & not_left) & moving).any() {
             return None;
@@ -87,30 +84,22 @@ impl Walk {
             return Some(false);
         }
         // Placed: the cell, its entry key (the latest of the moving axes'
-        // entries, ties to the highest axis, as `Key::lt` orders them) and
-        // its exit crossings; an axis that does not move keeps its start.
-        let moving_mask = moving.bitmask();
-        let mut key_in = Key::BEFORE;
-        for axis in 0..3 {
-            if moving_mask >> axis & 1 == 0 {
-                continue;
+        // entries, ties to the highest axis, as `Key::lt` orders them; a
+        // start key off its plane is before everything) and its exit
+        // crossings; an axis that does not move keeps its start.
+        let entries = Vec3A::select(moving, entry_t, Vec3A::NEG_INFINITY);
+        let latest = entries.max_element();
+        self.key = if latest == f32::NEG_INFINITY {
+            Key::BEFORE
+        } else {
+            let ties = entries.cmpeq(Vec3A::splat(latest)).bitmask();
+            Key {
+                t: latest,
+                axis: (u32::BITS - 1 - ties.leading_zeros()) as u8,
             }
-            self.cell[axis] = c[axis];
-            let entry = if c[axis] == start[axis] {
-                self.start_keys[axis]
-            } else {
-                Key {
-                    t: entry_t[axis],
-                    axis: axis as u8,
-                }
-            };
-            if key_in.lt(entry) {
-                key_in = entry;
-            }
-        }
-        self.key = key_in;
-        let exits = Vec3A::select(moving, exit_t, Vec3A::INFINITY);
-        self.next_t = exits.to_array();
+        };
+        self.cell = pick(moving, c.as_ivec3(), self.cell);
+        self.next_t = Vec3A::select(moving, exit_t, Vec3A::INFINITY).to_array();
         Some(true)
     }
 }

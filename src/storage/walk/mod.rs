@@ -34,14 +34,14 @@
 //! the walk stops once it leaves the volume, so a walk takes at most
 //! `size.x + size.y + size.z` moves ([`max_steps`]).
 
-use glam::{BVec3, IVec3, Vec3};
+use glam::{BVec3, IVec3, Vec3, Vec3A};
 
 use crate::geom::{Face, IAabb};
 
 mod guess;
 mod start;
 
-pub(crate) use start::start_rule;
+pub(crate) use start::{start_rule, EXACT};
 
 /// A crossing's place in the ray's visiting order: by time, then by axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -95,9 +95,10 @@ fn earliest(t: Vec3) -> Key {
 /// A ray's walk through the cells of one volume.
 #[derive(Clone, Debug)]
 pub(crate) struct Walk {
-    origin: Vec3,
-    dir: Vec3,
-    inv_dir: Vec3,
+    // The ray's, as the lanes it keeps them in.
+    origin: Vec3A,
+    dir: Vec3A,
+    inv_dir: Vec3A,
     /// +1, -1, or 0 for an axis the ray does not move along.
     step: IVec3,
     /// Lanes of `step` that are +1, and that are not 0.
@@ -213,10 +214,10 @@ impl Walk {
     /// on three lanes at once.
     #[inline]
     pub(crate) fn exit_of(&self, lo: IVec3, hi: IVec3) -> Key {
-        let far = IVec3::select(self.up, hi, lo).as_vec3();
+        let far = IVec3::select(self.up, hi, lo).as_vec3a();
         let t = Vec3::select(
             self.moving,
-            (far - self.origin) * self.inv_dir,
+            ((far - self.origin) * self.inv_dir).into(),
             Vec3::INFINITY,
         );
         earliest(t)
@@ -232,7 +233,7 @@ impl Walk {
     /// steps (+1, -1, or 0): what a caller needs to ask the walk's
     /// questions in another form (the octree's four-lane `Lanes`).
     #[inline]
-    pub(crate) fn parts(&self) -> (Vec3, Vec3, IVec3, IVec3) {
+    pub(crate) fn parts(&self) -> (Vec3A, Vec3A, IVec3, IVec3) {
         (self.origin, self.inv_dir, self.start, self.step)
     }
 

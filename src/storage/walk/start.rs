@@ -56,9 +56,18 @@ impl Walk {
         (start, face)
     }
 
+    /// The part of a ray's direction the start rule reads (which axes it
+    /// moves up along, which down), as six bits: rays from one origin with
+    /// equal classes start in the same cell with the same face.
+    #[inline]
+    pub(crate) fn start_class(ray: &Ray) -> u32 {
+        let (up, down) = directions(ray);
+        up.bitmask() | down.bitmask() << 3
+    }
+
     /// The walk in its first cell inside `bounds` at or after `not_before`.
     fn begin(ray: &Ray, bounds: &IAabb, not_before: Key) -> Option<Walk> {
-        let (origin, dir, inv_dir) = (ray.origin(), ray.dir(), ray.inv_dir());
+        let (origin, dir, inv_dir) = ray.lanes();
         let (step, start, start_keys) = start_rule(ray);
         let step = IVec3::from_array(step);
         let start = IVec3::from_array(start);
@@ -275,19 +284,32 @@ pub(crate) fn start_rule(ray: &Ray) -> ([i32; 3], [i32; 3], [Key; 3]) {
     (step.to_array(), start.to_array(), [key(0), key(1), key(2)])
 }
 
+/// The axes a ray moves up along, and down: an infinite reciprocal (a
+/// subnormal component) would turn a crossing at distance 0 into NaN; such
+/// an axis never reaches a plane in f32 anyway, so it counts as not moving.
+#[inline]
+fn directions(ray: &Ray) -> (BVec3A, BVec3A) {
+    let (_, dir, inv_dir) = ray.lanes();
+    let finite_inv = inv_dir.abs().cmplt(Vec3A::INFINITY);
+    let moving = dir.cmpne(Vec3A::ZERO) & finite_inv;
+    (
+        moving & dir.cmpgt(Vec3A::ZERO),
+        moving & dir.cmplt(Vec3A::ZERO),
+    )
+}
+
+/// 2^23: below it, casts of coordinates truncate exactly and integers and
+/// their neighbours are exact floats, so origins below it on every axis
+/// take the shortcuts (here the start rule on float lanes).
+pub(crate) const EXACT: f32 = 8_388_608.0;
+
 /// The start rule on three lanes: the steps, the start cell, and the axes
 /// whose entry plane the origin lies on.
 #[inline]
 fn start_lanes(ray: &Ray) -> (IVec3, IVec3, BVec3A) {
-    let origin = Vec3A::from(ray.origin());
-    let dir = Vec3A::from(ray.dir());
-    // An infinite reciprocal (a subnormal component) would turn a crossing
-    // at distance 0 into NaN; such an axis never reaches a plane in f32
-    // anyway, so it counts as not moving.
-    let finite_inv = Vec3A::from(ray.inv_dir()).abs().cmplt(Vec3A::INFINITY);
-    let moving = dir.cmpne(Vec3A::ZERO) & finite_inv;
-    let up = moving & dir.cmpgt(Vec3A::ZERO);
-    let down = moving & dir.cmplt(Vec3A::ZERO);
+    let (origin, _, _) = ray.lanes();
+    let (up, down) = directions(ray);
+    let moving = up | down;
     let ones = |mask: BVec3A| {
         let bits = mask.bitmask();
         IVec3::new(
@@ -298,12 +320,21 @@ fn start_lanes(ray: &Ray) -> (IVec3, IVec3, BVec3A) {
     };
     // The start cell's entry plane is floor(o) moving up, ceil(o) moving
     // down: the origin lies on it exactly when it is an integer, and then a
-    // ray moving down starts in the cell below. Truncation saturates as
-    // `floor_cell` does (saturated cells of huge origins lie outside every
-    // volume).
+    // ray moving down starts in the cell below.
+    let steps = ones(up) - ones(down);
+    if origin.abs().cmplt(Vec3A::splat(EXACT)).all() {
+        // The common case, on float lanes: below 2^23 the floor, and one
+        // less, are exact floats of exact integers.
+        let floor = origin.floor();
+        let on_plane = moving & floor.cmpeq(origin);
+        let below = Vec3A::select(on_plane & down, Vec3A::ONE, Vec3A::ZERO);
+        return (steps, (floor - below).as_ivec3(), on_plane);
+    }
+    // Truncation saturates as `floor_cell` does (saturated cells of huge
+    // origins lie outside every volume).
     let truncated = origin.as_ivec3();
     let floor = truncated.saturating_sub(ones(truncated.as_vec3a().cmpgt(origin)));
     let on_plane = moving & floor.as_vec3a().cmpeq(origin);
     let start = floor.saturating_sub(ones(on_plane & down));
-    (ones(up) - ones(down), start, on_plane)
+    (steps, start, on_plane)
 }
