@@ -64,7 +64,7 @@ function draw() {
   }
   const ms = performance.now() - started;
   if (code !== 0) {
-    status.textContent = `error: ${ERRORS[code] ?? code}`;
+    status.textContent = `error: ${ERRORS[code] ?? code}: ${message()}`;
     return;
   }
   const bytes = new Uint8ClampedArray(

@@ -221,13 +221,17 @@ fn draw_chart(
         .map_err(plot_error)
 }
 
+/// A legend's sample of a line: two strokes from one point.
+type LegendMark<DB> =
+    ComposedElement<(i32, i32), DB, PathElement<(i32, i32)>, PathElement<(i32, i32)>>;
+
 /// The legend's sample of a line, 20 pixels from `at`, drawn as the chart
 /// draws it: a dashed line as two dashes, a solid one whole.
 fn legend_mark<DB: DrawingBackend>(
     line: Line,
     at: (i32, i32),
     style: ShapeStyle,
-) -> ComposedElement<(i32, i32), DB, PathElement<(i32, i32)>, PathElement<(i32, i32)>> {
+) -> LegendMark<DB> {
     let gap = if line == Line::Dashed {
         (8, 13)
     } else {

@@ -219,25 +219,39 @@ fn render_into(state: &mut State, f: &Frame) -> ErrorCode {
         ..
     } = state;
     let Some(subject) = subject.as_ref() else {
+        *message = "no scene yet: vt_terrain or vt_load_vox first".into();
         return ErrorCode::BadScene;
     };
     if f.backend > 1 {
+        *message = format!("backend {} is neither 0 (dense) nor 1 (octree)", f.backend);
         return ErrorCode::BadScene;
     }
     if scene.as_ref().map(|(b, _)| *b) != Some(f.backend) {
         *scene = None; // free the old scene before building the new one
         match build(subject, f.backend) {
             Ok(built) => *scene = Some((f.backend, built)),
-            Err(code) => return code,
+            Err(code) => {
+                *message = "the scene could not be built (out of memory)".into();
+                return code;
+            }
         }
     }
-    let settings = camera::settings(f.view, f.zoom, f.width, f.height, subject.shown());
-    let Some(camera) = settings.and_then(|s| Camera::new(s).ok()) else {
+    let Some(settings) = camera::settings(f.view, f.zoom, f.width, f.height, subject.shown())
+    else {
+        *message = "no camera for this view (a zoom that is not a positive number?)".into();
         return ErrorCode::BadCamera;
+    };
+    let camera = match Camera::new(settings) {
+        Ok(camera) => camera,
+        Err(e) => {
+            *message = e.to_string();
+            return ErrorCode::BadCamera;
+        }
     };
     let pixels = f.width as usize * f.height as usize;
     frame.clear();
     if frame.try_reserve_exact(pixels).is_err() {
+        *message = format!("no memory for a {}x{} frame", f.width, f.height);
         return ErrorCode::Render;
     }
     frame.resize(pixels, 0);
@@ -249,11 +263,10 @@ fn render_into(state: &mut State, f: &Frame) -> ErrorCode {
         None => return ErrorCode::Build,
     };
     if !rendered {
+        *message = "the frame could not be rendered".into();
         return ErrorCode::Render;
     }
-    if let Some(s) = settings {
-        *message = camera::describe(&s);
-    }
+    *message = camera::describe(&settings);
     ErrorCode::Ok
 }
 
