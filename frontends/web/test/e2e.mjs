@@ -2,7 +2,8 @@
 // read the canvas pixels back, and require them to equal the desktop
 // binary's render of the same scene, camera and effects byte for byte:
 // terrain from fixed positions on both backends; docs/terrain.vox loaded
-// through the file picker and through a dropped file; each effect toggled;
+// through the file picker and through a dropped file (and three models of
+// ../shared/scenes/vox when that folder is there); each effect toggled;
 // the top and iso views; a zoom by the mouse wheel (against the command the
 // page prints for its camera); an orbit by dragging. Saves a screenshot of
 // the page to web-e2e.png in cargo's target folder.
@@ -13,7 +14,7 @@
 // target/), Chromium at $CHROMIUM or /usr/bin/chromium, and `npm ci` here.
 
 import { execFileSync } from "node:child_process";
-import { mkdtempSync, readFileSync, rmSync } from "node:fs";
+import { existsSync, mkdtempSync, readFileSync, rmSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
 import { fileURLToPath } from "node:url";
@@ -124,6 +125,22 @@ try {
   await page.waitForFunction(() => document.body.dataset.rendered === "1");
   await after(() => page.setInputFiles("#file", sample));
   const picked = await compare("docs/terrain.vox from the file picker", model);
+
+  // Models by other authors, when the shared folder is there: materials,
+  // emitters and a file's own sun and sky (path-traced on both sides).
+  const shared = path.resolve(root, "../shared/scenes/vox");
+  const others = ["chr_riotcop.vox", "H1-COLORED.vox", "study.vox"]
+    .map((name) => path.join(shared, name)).filter((file) => existsSync(file));
+  if (others.length === 0) console.log(`skipped the shared models: ${shared} is absent`);
+  for (const file of others) {
+    await after(() => page.setInputFiles("#file", file));
+    await compare(`${path.basename(file)} from the file picker`,
+      ["--vox", file, "--orbit", "30,20"]);
+  }
+  if (others.length > 0) {
+    await after(() => page.setInputFiles("#file", sample));
+    await compare("docs/terrain.vox again", model);
+  }
 
   // The same file dropped on the page, after the terrain is back.
   await after(() => page.fill("#seed", "5").then(() => page.dispatchEvent("#seed", "change")));
