@@ -5,7 +5,8 @@
 // keeps the page's state: what to show, the view, the zoom, the toggles.
 // URL parameters set up a render (the end-to-end test uses them):
 // ?seed=3&size=24&backend=octree&pos=40,50,30&w=96&h=64
-// (pos: a camera position looking at the origin, instead of the orbit).
+// (pos: a camera position looking at the scene's target, the origin for
+// the terrain, instead of the orbit).
 
 const params = new URLSearchParams(location.search);
 const $ = (id) => document.getElementById(id);
