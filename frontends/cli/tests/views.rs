@@ -300,6 +300,30 @@ fn out_dash_writes_the_image_to_stdout() {
         "bmp",
     ]);
     assert!(bmp.status.success() && bmp.stdout.starts_with(b"BM"));
+    // What cannot go to one stream is refused before rendering: frames (one
+    // file each) and tiles (a part file for stitch).
+    for (extra, expect) in [
+        (&["--frames", "2"][..], "--out - cannot hold them"),
+        (
+            &["--tiles", "2x1", "--tile-index", "0"],
+            "--out - cannot be one",
+        ),
+    ] {
+        let mut args = vec![
+            "--size", "20", "--seed", "2", "--width", "16", "--height", "8",
+        ];
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["--out", "-"]);
+        let result = voxtrace(&args);
+        let text = stderr(&result);
+        assert_eq!(result.status.code(), Some(2), "{extra:?}: {text}");
+        assert!(
+            text.lines().count() == 1 && text.starts_with("error:") && text.contains(expect),
+            "{extra:?}: {text}"
+        );
+        assert!(result.stdout.is_empty(), "{extra:?} wrote to stdout");
+    }
+    assert!(!Path::new("-").exists(), "a file named - was written");
 }
 
 #[test]
