@@ -1,15 +1,20 @@
 // Loads voxtrace_web.wasm (a plain module: exported functions over linear
-// memory), renders into the canvas, and orbits the camera on drag.
-// URL parameters set up a fixed render (used by the end-to-end test):
+// memory, see src/lib.rs), renders into the canvas, and shows the voxtrace
+// command that renders the same image on the desktop. Cameras, framing and
+// effects are computed in the module by the core's types; this file only
+// keeps the page's state: what to show, the view, the zoom, the toggles.
+// URL parameters set up a render (the end-to-end test uses them):
 // ?seed=3&size=24&backend=octree&pos=40,50,30&w=96&h=64
+// (pos: a camera position looking at the scene's target, the origin for
+// the terrain, instead of the orbit).
 
 const params = new URLSearchParams(location.search);
-const canvas = document.getElementById("frame");
-const status = document.getElementById("status");
+const $ = (id) => document.getElementById(id);
+const canvas = $("frame");
+const status = $("status");
 const inputs = {
-  seed: document.getElementById("seed"),
-  size: document.getElementById("size"),
-  backend: document.getElementById("backend"),
+  seed: $("seed"), size: $("size"), backend: $("backend"), view: $("view"),
+  shadows: $("shadows"), ao: $("ao"), fog: $("fog"),
 };
 if (params.has("seed")) inputs.seed.value = params.get("seed");
 if (params.has("size")) inputs.size.value = params.get("size");
@@ -17,44 +22,66 @@ if (params.has("backend")) inputs.backend.value = params.get("backend") === "den
 if (params.has("w")) canvas.width = Number(params.get("w"));
 if (params.has("h")) canvas.height = Number(params.get("h"));
 
-// Orbit: yaw and pitch around the origin, at a distance set by the size.
-const orbit = { yaw: Math.PI / 4, pitch: 0.55, fixed: null };
-if (params.has("pos")) orbit.fixed = params.get("pos").split(",").map(Number);
+// The module's view codes: 1 an orbit, then the core's ViewPreset::ALL.
+const VIEWS = ["orbit", "front", "back", "left", "right", "top", "bottom", "iso"];
+// The ambient-occlusion toggle is the CLI's --ao with this many rays.
+const AO_RAYS = 8;
+// Orbit angles in degrees (the CLI's --orbit YAW,PITCH), a fixed position
+// when the URL gives one, and the wheel's zoom in steps of 1.25 times.
+const camera = { yaw: 45, pitch: 30, fixed: null, zoomSteps: 0 };
+if (params.has("pos")) camera.fixed = params.get("pos").split(",").map(Number);
+// The model on show (its file name for the command), or null: the terrain.
+let model = null;
 
 const { instance } = await WebAssembly.instantiateStreaming(fetch("voxtrace_web.wasm"));
 const vt = instance.exports;
 const ctx = canvas.getContext("2d");
-const ERRORS = ["", "bad seed, size or backend", "cannot build the scene",
-                "bad camera", "cannot render"];
+const ERRORS = ["", "bad seed, size, backend or view", "cannot build the scene",
+                "bad camera", "cannot render", "not a .vox file voxtrace can read"];
 
-function eye() {
-  if (orbit.fixed) return orbit.fixed;
-  const size = Number(inputs.size.value);
-  const r = 2.4 * size + 40;
-  return [
-    r * Math.cos(orbit.pitch) * Math.cos(orbit.yaw),
-    r * Math.sin(orbit.pitch),
-    r * Math.cos(orbit.pitch) * Math.sin(orbit.yaw),
-  ];
+function message() {
+  return new TextDecoder().decode(
+    new Uint8Array(vt.memory.buffer, vt.vt_message_ptr(), vt.vt_message_len()));
 }
 
+// A word as a POSIX shell reads it back.
+const quote = (s) => /^[\w.\/,+-]+$/.test(s) ? s : `'${s.replaceAll("'", "'\\''")}'`;
+
 function draw() {
-  const seed = BigInt.asUintN(64, BigInt(inputs.seed.value || "0"));
-  const [x, y, z] = eye();
+  const zoom = Math.pow(1.25, camera.zoomSteps);
+  const view = camera.fixed ? 0 : VIEWS.indexOf(inputs.view.value) + 1;
+  const [a, b, c] = camera.fixed ?? [camera.yaw, camera.pitch, 0];
+  const effects = (inputs.shadows.checked ? 1 : 0) | (inputs.fog.checked ? 2 : 0);
+  const ao = inputs.ao.checked ? AO_RAYS : 0;
   const started = performance.now();
-  const code = vt.vt_render(
-    Number(seed & 0xffffffffn), Number(seed >> 32n),
-    Number(inputs.size.value), Number(inputs.backend.value),
-    x, y, z, canvas.width, canvas.height);
+  let code = 0;
+  if (!model) {
+    const seed = BigInt.asUintN(64, BigInt(inputs.seed.value || "0"));
+    code = vt.vt_terrain(Number(seed & 0xffffffffn), Number(seed >> 32n), Number(inputs.size.value));
+  }
+  if (code === 0) {
+    code = vt.vt_render(Number(inputs.backend.value), view, a, b, c, zoom, effects, ao,
+      canvas.width, canvas.height);
+  }
   const ms = performance.now() - started;
   if (code !== 0) {
-    status.textContent = `error: ${ERRORS[code] ?? code}`;
+    status.textContent = `error: ${ERRORS[code] ?? code}: ${message()}`;
     return;
   }
   const bytes = new Uint8ClampedArray(
     vt.memory.buffer, vt.vt_frame_ptr(), vt.vt_frame_len() * 4);
   ctx.putImageData(new ImageData(bytes.slice(), canvas.width, canvas.height), 0, 0);
   status.textContent = `${ms.toFixed(1)} ms (build included when the scene changed)`;
+  const scene = model
+    ? ["--vox", quote(model)]
+    : ["--seed", inputs.seed.value, "--size", inputs.size.value];
+  $("command").textContent = ["voxtrace", ...scene,
+    "--backend", inputs.backend.value === "0" ? "dense" : "octree",
+    "--width", canvas.width, "--height", canvas.height, message(),
+    ...(inputs.shadows.checked ? ["--shadows"] : []),
+    ...(ao ? ["--ao", AO_RAYS] : []),
+    ...(inputs.fog.checked ? ["--fog"] : []),
+    "--out", "render.png"].join(" ");
   document.body.dataset.rendered = String(Number(document.body.dataset.rendered ?? 0) + 1);
 }
 
@@ -62,23 +89,81 @@ let pending = false;
 function request() {
   if (pending) return;
   pending = true;
-  requestAnimationFrame(() => { pending = false; draw(); });
+  document.body.dataset.pending = "1";
+  requestAnimationFrame(() => {
+    pending = false;
+    draw();
+    delete document.body.dataset.pending;
+  });
 }
+
+// A .vox file from the picker or a drop: copied into the module's memory
+// and parsed there; shown from the CLI's default model view.
+async function load(file) {
+  const bytes = new Uint8Array(await file.arrayBuffer());
+  const ptr = vt.vt_upload(bytes.length);
+  if (!ptr) {
+    status.textContent = `error: ${file.name} does not fit in memory`;
+    return;
+  }
+  new Uint8Array(vt.memory.buffer, ptr, bytes.length).set(bytes);
+  if (vt.vt_load_vox() !== 0) {
+    status.textContent = `error: ${file.name}: ${message()}`;
+    return;
+  }
+  model = file.name;
+  Object.assign(camera, { yaw: 30, pitch: 20, fixed: null, zoomSteps: 0 });
+  request();
+}
+
+$("file").addEventListener("change", (e) => {
+  if (e.target.files.length) load(e.target.files[0]);
+});
+document.addEventListener("dragover", (e) => {
+  e.preventDefault();
+  document.body.classList.add("dropping");
+});
+document.addEventListener("dragleave", () => document.body.classList.remove("dropping"));
+document.addEventListener("drop", (e) => {
+  e.preventDefault();
+  document.body.classList.remove("dropping");
+  const file = e.dataTransfer?.files?.[0];
+  if (file) load(file);
+});
 
 let drag = null;
 canvas.addEventListener("pointerdown", (e) => {
   drag = { x: e.clientX, y: e.clientY };
-  orbit.fixed = null;
   canvas.setPointerCapture(e.pointerId);
 });
 canvas.addEventListener("pointermove", (e) => {
   if (!drag) return;
-  orbit.yaw += (e.clientX - drag.x) * 0.01;
-  orbit.pitch = Math.min(1.5, Math.max(-0.2, orbit.pitch + (e.clientY - drag.y) * 0.01));
+  camera.fixed = null;
+  inputs.view.value = "orbit";
+  camera.yaw -= (e.clientX - drag.x) * 0.5;
+  camera.pitch = Math.min(89, Math.max(-89, camera.pitch + (e.clientY - drag.y) * 0.5));
   drag = { x: e.clientX, y: e.clientY };
   request();
 });
 canvas.addEventListener("pointerup", () => { drag = null; });
-for (const input of Object.values(inputs)) input.addEventListener("change", request);
+canvas.addEventListener("wheel", (e) => {
+  e.preventDefault();
+  camera.zoomSteps = Math.min(16, Math.max(-8, camera.zoomSteps - Math.sign(e.deltaY)));
+  request();
+}, { passive: false });
+// A new seed or size brings the terrain back. (A browser fires "change" on
+// blur too, after a file was loaded meanwhile: only a new value counts.)
+const terrainKey = () => `${inputs.seed.value},${inputs.size.value}`;
+let lastTerrain = terrainKey();
+for (const id of ["seed", "size"]) {
+  inputs[id].addEventListener("change", () => {
+    if (terrainKey() === lastTerrain) return;
+    lastTerrain = terrainKey();
+    model = null;
+    request();
+  });
+}
+inputs.view.addEventListener("change", () => { camera.fixed = null; request(); });
+for (const id of ["backend", "shadows", "ao", "fog"]) inputs[id].addEventListener("change", request);
 
 draw();

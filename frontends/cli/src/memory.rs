@@ -3,7 +3,7 @@
 //! memory this process can have (read from the OS here), or `--max-memory`.
 
 use voxtrace::IAabb;
-use voxtrace_cli::Backend;
+use voxtrace_cli::{human_bytes, Backend};
 
 /// Bytes per pixel at the peak of a render: the framebuffer (4), the
 /// finished pixels (4) and the encoder's RGBA copy (4).
@@ -60,9 +60,11 @@ impl Budget {
             Backend::Octree => "; try a smaller --size, or --max-memory to override",
         };
         Err(format!(
-            "{what} {} bytes (estimated before building) and the frame {} bytes, \
-             more than the {available} bytes available ({from}){hint}",
-            self.storage, self.frame
+            "{what} {}, estimated before building, and the frame {}: more than \
+             the {} available ({from}){hint}",
+            human_bytes(self.storage),
+            human_bytes(self.frame),
+            human_bytes(available)
         ))
     }
 }
@@ -166,7 +168,24 @@ mod tests {
         let b = budget(Backend::Dense, IAabb::centered(10), None, 100, Some(9199));
         let refusal = b.check(Backend::Dense).unwrap_err();
         assert!(
-            refusal.contains("8000 bytes") && refusal.contains("--max-memory"),
+            refusal.contains("7.8 KiB (8000 bytes)")
+                && refusal.contains("1.2 KiB (1200 bytes)")
+                && refusal.contains("9.0 KiB (9199 bytes) available")
+                && refusal.contains("--max-memory"),
+            "{refusal}"
+        );
+        // Large figures read short, the exact count after them.
+        let b = budget(
+            Backend::Dense,
+            IAabb::centered(4096),
+            None,
+            16,
+            Some(1 << 30),
+        );
+        let refusal = b.check(Backend::Dense).unwrap_err();
+        assert!(
+            refusal.contains("512 GiB (549755813888 bytes)")
+                && refusal.contains("1.0 GiB (1073741824 bytes) available"),
             "{refusal}"
         );
     }

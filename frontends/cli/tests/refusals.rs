@@ -55,7 +55,7 @@ fn bombs_and_absurd_sizes_exit_2_quickly_in_little_memory() {
         cases.push((
             format!("--size {size}"),
             args,
-            "bytes (estimated before building)",
+            "bytes), estimated before building",
         ));
     }
     for (name, args, needle) in cases {

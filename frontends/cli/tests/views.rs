@@ -251,6 +251,41 @@ fn a_transparent_background_has_alpha_0_exactly_on_misses() {
     assert!(hits > 0 && misses > 0, "{hits} hits, {misses} misses");
 }
 
+/// `--background transparent` in the other formats: TGA and BMP keep the
+/// PNG's alpha (0 exactly on misses), PPM has none and says so.
+#[cfg(feature = "image")]
+#[test]
+fn a_transparent_background_keeps_its_alpha_where_the_format_has_one() {
+    let flags = ["--background", "transparent", "--position", "60,70,60"];
+    let (png, text) = run(&flags, "alpha.png");
+    assert!(!text.contains("alpha"), "{text}");
+    let (_, _, png) = decode(&png);
+    let misses = png.chunks_exact(4).filter(|p| p[3] == 0).count();
+    assert!(misses > 0 && misses < png.len() / 4, "{misses} misses");
+    for ext in ["tga", "bmp"] {
+        let (bytes, text) = run(&flags, &format!("alpha.{ext}"));
+        assert!(!text.contains("alpha"), "{ext}: {text}");
+        let format = image::ImageFormat::from_extension(ext).unwrap();
+        let rgba = image::load_from_memory_with_format(&bytes, format)
+            .unwrap_or_else(|e| panic!("{ext}: {e}"))
+            .to_rgba8();
+        assert!(rgba.as_raw() == &png, "{ext}: not the PNG's RGBA");
+    }
+    let (bytes, text) = run(&flags, "alpha.ppm");
+    assert_eq!(
+        text.matches("note: this format has no alpha channel")
+            .count(),
+        1,
+        "{text}"
+    );
+    let rgb = image::load_from_memory(&bytes).unwrap().to_rgb8();
+    let png_rgb: Vec<u8> = png
+        .chunks_exact(4)
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .collect();
+    assert!(rgb.as_raw() == &png_rgb, "ppm: not the PNG's colors");
+}
+
 #[test]
 fn out_dash_writes_the_image_to_stdout() {
     let (file, _) = run(&[], "to_file.png");
@@ -265,6 +300,30 @@ fn out_dash_writes_the_image_to_stdout() {
         "bmp",
     ]);
     assert!(bmp.status.success() && bmp.stdout.starts_with(b"BM"));
+    // What cannot go to one stream is refused before rendering: frames (one
+    // file each) and tiles (a part file for stitch).
+    for (extra, expect) in [
+        (&["--frames", "2"][..], "--out - cannot hold them"),
+        (
+            &["--tiles", "2x1", "--tile-index", "0"],
+            "--out - cannot be one",
+        ),
+    ] {
+        let mut args = vec![
+            "--size", "20", "--seed", "2", "--width", "16", "--height", "8",
+        ];
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["--out", "-"]);
+        let result = voxtrace(&args);
+        let text = stderr(&result);
+        assert_eq!(result.status.code(), Some(2), "{extra:?}: {text}");
+        assert!(
+            text.lines().count() == 1 && text.starts_with("error:") && text.contains(expect),
+            "{extra:?}: {text}"
+        );
+        assert!(result.stdout.is_empty(), "{extra:?} wrote to stdout");
+    }
+    assert!(!Path::new("-").exists(), "a file named - was written");
 }
 
 #[test]

@@ -223,9 +223,10 @@ fn table(
     let (samples, ao, _) = REFERENCE;
     let mut md = String::new();
     let runs_text = count_of(runs, "run");
+    let threads_text = count_of(threads, "thread");
     let _ = writeln!(
         md,
-        "Measured by `{command}` on {} with {threads} threads: terrain seed {SEED}, \
+        "Measured by `{command}` on {} with {threads_text}: terrain seed {SEED}, \
          size {SIZE} (octree), {width}x{height}, median of {runs_text}. \
          Error against a reference of {samples} samples per pixel with {ao} occlusion \
          rays each and shadows ({}).\n",
@@ -278,5 +279,28 @@ fn chart(rows: &[Row], width: u32, height: u32) -> Chart {
         y_label: "RMSE against the reference (0-255)".to_string(),
         series,
         legend: SeriesLabelPosition::LowerLeft,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_thread_and_one_run_are_singular() {
+        let one = table(&[], "cmd", 8, 8, 1, 1, 1.0);
+        assert!(
+            one.contains("with 1 thread:") && one.contains("median of 1 run."),
+            "{one}"
+        );
+        assert!(
+            !one.contains("1 threads") && !one.contains("1 runs"),
+            "{one}"
+        );
+        let two = table(&[], "cmd", 8, 8, 2, 3, 1.0);
+        assert!(
+            two.contains("with 2 threads:") && two.contains("median of 3 runs."),
+            "{two}"
+        );
     }
 }

@@ -7,6 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use plotters::coord::combinators::BindKeyPoints;
+use plotters::element::ComposedElement;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
@@ -196,21 +197,11 @@ fn draw_chart(
         } else {
             context.draw_series(LineSeries::new(series.points.iter().copied(), style))
         };
-        // The legend draws each line as the chart does: dashed lines as
-        // two dashes, solid ones whole.
-        let gap = if series.line == Line::Dashed {
-            (8, 13)
-        } else {
-            (20, 20)
-        };
+        let line = series.line;
         drawn
             .map_err(plot_error)?
             .label(&series.name)
-            .legend(move |(x, y)| {
-                EmptyElement::at((x, y))
-                    + PathElement::new(vec![(0, 0), (gap.0, 0)], style)
-                    + PathElement::new(vec![(gap.1, 0), (20, 0)], style)
-            });
+            .legend(move |at| legend_mark(line, at, style));
         context
             .draw_series(
                 series
@@ -228,6 +219,27 @@ fn draw_chart(
         .label_font(("sans-serif", 15))
         .draw()
         .map_err(plot_error)
+}
+
+/// A legend's sample of a line: two strokes from one point.
+type LegendMark<DB> =
+    ComposedElement<(i32, i32), DB, PathElement<(i32, i32)>, PathElement<(i32, i32)>>;
+
+/// The legend's sample of a line, 20 pixels from `at`, drawn as the chart
+/// draws it: a dashed line as two dashes, a solid one whole.
+fn legend_mark<DB: DrawingBackend>(
+    line: Line,
+    at: (i32, i32),
+    style: ShapeStyle,
+) -> LegendMark<DB> {
+    let gap = if line == Line::Dashed {
+        (8, 13)
+    } else {
+        (20, 20)
+    };
+    EmptyElement::at(at)
+        + PathElement::new(vec![(0, 0), (gap.0, 0)], style)
+        + PathElement::new(vec![(gap.1, 0), (20, 0)], style)
 }
 
 /// Axis labels without trailing zeros: 0.5, 20, 1000.
@@ -258,6 +270,42 @@ mod tests {
             "{ticks:?}"
         );
         assert!(ticks.iter().all(|t| range.contains(t)));
+    }
+
+    /// The runs of colored pixels along the middle row of a legend mark
+    /// drawn at (5, 5) on white: `(first x, length)` each.
+    fn legend_runs(line: Line) -> Vec<(usize, usize)> {
+        let (w, h) = (32, 11);
+        let mut rgb = vec![255u8; w * h * 3];
+        {
+            let root =
+                BitMapBackend::with_buffer(&mut rgb, (w as u32, h as u32)).into_drawing_area();
+            let style = COLORS[0].stroke_width(1);
+            root.draw(&legend_mark(line, (5, 5), style)).unwrap();
+            root.present().unwrap();
+        }
+        let row = &rgb[5 * w * 3..6 * w * 3];
+        let mut runs: Vec<(usize, usize)> = Vec::new();
+        for x in 0..w {
+            if row[x * 3..x * 3 + 3] == [255, 255, 255] {
+                continue;
+            }
+            match runs.last_mut() {
+                Some((start, len)) if *start + *len == x => *len += 1,
+                _ => runs.push((x, 1)),
+            }
+        }
+        runs
+    }
+
+    #[test]
+    fn the_legend_draws_dashed_lines_dashed_and_solid_ones_whole() {
+        let solid = legend_runs(Line::Thick);
+        assert_eq!(solid.len(), 1, "{solid:?}");
+        assert!(solid[0].1 >= 20, "{solid:?}");
+        let dashed = legend_runs(Line::Dashed);
+        assert_eq!(dashed.len(), 2, "{dashed:?}");
+        assert!(dashed[1].0 >= dashed[0].0 + dashed[0].1 + 3, "{dashed:?}");
     }
 
     #[test]

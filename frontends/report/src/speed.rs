@@ -16,7 +16,8 @@ use crate::surface::surface_voxels;
 /// Options of the `speed` report.
 #[derive(Debug, clap::Args)]
 pub struct SpeedArgs {
-    /// 1920x1080 only, sizes up to 250, 3 runs: a few minutes.
+    /// 1920x1080 only, the paper's sizes (50, 100, 250), 3 runs: under a
+    /// minute on 2 cores (50 s measured with other builds sharing them).
     #[arg(long)]
     quick: bool,
     /// Timed runs per figure (after one untimed warm-up) [default: 5, quick: 3].

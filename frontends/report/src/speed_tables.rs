@@ -39,9 +39,10 @@ pub(crate) fn tables(
 ) -> String {
     let mut md = String::new();
     let runs_text = count_of(runs, "run");
+    let threads_text = count_of(threads, "thread");
     let _ = writeln!(
         md,
-        "Measured by `{command}` on {} with {threads} threads: seed {seed}, \
+        "Measured by `{command}` on {} with {threads_text}: seed {seed}, \
          median of {runs_text} after a warm-up, the CLI's build and render path \
          (parallel build, `render_parallel`, frame allocation included).\n",
         cpu_name()
@@ -78,7 +79,7 @@ pub(crate) fn tables(
 
     let _ = writeln!(
         md,
-        "Per core against the paper (6 cores / 12 threads; here {threads} threads), 1920x1080, the paper's camera: \
+        "Per core against the paper (6 cores / 12 threads; here {threads_text}), 1920x1080, the paper's camera: \
          paper ms × 6 / (ms here × {threads}), above 1 means more frames per core here:\n"
     );
     let _ = writeln!(
@@ -221,7 +222,7 @@ pub(crate) fn charts(measured: &[Measured], threads: usize) -> Vec<Chart> {
         .collect();
     vec![
         Chart {
-            title: format!("Render time, 1920x1080, {threads} threads"),
+            title: format!("Render time, 1920x1080, {}", count_of(threads, "thread")),
             x_label: "scene size (volume = (2·size)³)".to_string(),
             y_label: "ms per frame (median)".to_string(),
             series: time,
@@ -235,4 +236,29 @@ pub(crate) fn charts(measured: &[Measured], threads: usize) -> Vec<Chart> {
             legend: SeriesLabelPosition::UpperLeft,
         },
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_thread_and_one_run_are_singular() {
+        let one = tables(&[], 1, 1, 1, "cmd");
+        assert!(
+            one.contains("with 1 thread:") && one.contains("median of 1 run after"),
+            "{one}"
+        );
+        assert!(one.contains("here 1 thread)"), "{one}");
+        assert!(
+            !one.contains("1 threads") && !one.contains("1 runs"),
+            "{one}"
+        );
+        let two = tables(&[], 2, 3, 1, "cmd");
+        assert!(
+            two.contains("with 2 threads:") && two.contains("median of 3 runs after"),
+            "{two}"
+        );
+        assert_eq!(charts(&[], 1)[0].title, "Render time, 1920x1080, 1 thread");
+    }
 }

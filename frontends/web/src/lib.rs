@@ -1,193 +1,331 @@
-//! voxtrace for the browser: a plain WebAssembly module (`wasm32-unknown-unknown`)
-//! whose exported functions build the terrain and render it into a frame in
-//! linear memory, which the page (`index.html`, `main.js`) copies into a
-//! canvas. The page calls:
+//! voxtrace for the browser: a plain WebAssembly module
+//! (`wasm32-unknown-unknown`, no imports, no bindings generator) whose
+//! exported functions build a scene and render it into a frame in linear
+//! memory, which the page (`index.html`, `main.js`) copies into a canvas.
+//! The page calls:
 //!
-//! - `vt_render(seed_lo, seed_hi, size, backend, x, y, z, width, height)`:
-//!   builds the scene (kept while seed, size and backend stay the same) and
-//!   renders the default look from camera position `(x, y, z)` looking at
-//!   the origin; returns 0, or an error code ([`ErrorCode`]).
-//! - `vt_frame_ptr()` / `vt_frame_len()`: the frame's RGBA8 pixels (R first
-//!   in memory), `width * height` of them.
+//! - `vt_terrain(seed_lo, seed_hi, size)`: the scene is the seeded terrain
+//!   of `--size` `size` (1..=256).
+//! - `vt_upload(len)`: room for a `.vox` file's `len` bytes, returned as a
+//!   pointer the page writes them to; then `vt_load_vox()` makes that model
+//!   the scene (its error, if any, in `vt_message_*`).
+//! - `vt_render(backend, view, a, b, c, zoom, effects, ao_rays, width,
+//!   height)`: builds the scene (kept while it and the backend stay the
+//!   same) and renders it; `view` and `a, b, c` place the camera
+//!   ([`camera::View::from_code`]: a position, an orbit, or a preset such
+//!   as top or iso, framed as the CLI frames them), `zoom` magnifies it
+//!   (the mouse wheel; 1 is the CLI's framing), `effects` holds the
+//!   [`options::SHADOWS`] and [`options::FOG`] bits and `ao_rays` is
+//!   `--ao` (0: off).
+//! - `vt_frame_ptr()` / `vt_frame_len()`: the frame's RGBA8 pixels (R
+//!   first in memory), `width * height` of them.
+//! - `vt_message_ptr()` / `vt_message_len()`: UTF-8 text: after a render,
+//!   the CLI flags of its camera (`--position ... --lookat ... --fov ...`);
+//!   after a failure, why.
 //!
-//! The pixels are the scalar tracer's, so they equal the desktop render of
-//! the same scene and camera byte for byte.
+//! Every call that can fail returns 0 or an [`ErrorCode`]. The pixels are
+//! the scalar tracer's, so they equal the desktop render of the same
+//! scene, camera and effects byte for byte.
+
+pub mod camera;
+pub mod options;
 
 use std::sync::Mutex;
 
-use voxtrace::glam::Vec3;
 use voxtrace::{
-    render, Camera, CameraSettings, DenseScene, IAabb, Node, OctreeScene, RenderOptions,
-    VoxelGenerator, MAX_COORD,
+    render, Camera, DenseScene, IAabb, Node, OctreeScene, RenderOptions, Scene, VoxModel,
+    VoxelGenerator, WithMaterials, MAX_COORD,
 };
 
-/// Why `vt_render` failed (its return value).
+use camera::{Shown, View};
+
+/// Why a call failed (its return value).
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ErrorCode {
-    /// Rendered.
+    /// Done.
     Ok = 0,
-    /// `size` out of 1..=256 or `backend` not 0 (dense) or 1 (octree).
+    /// `size` out of 1..=256, `backend` not 0 (dense) or 1 (octree), or
+    /// `view` not 0..=8.
     BadScene = 1,
     /// The scene could not be built (out of memory).
     Build = 2,
-    /// The camera is degenerate (position at the origin, zero size, ...).
+    /// The camera is degenerate (position on the target, zero size, bad
+    /// zoom, ...).
     BadCamera = 3,
     /// The frame could not be allocated or rendered.
     Render = 4,
+    /// The uploaded bytes are not a `.vox` file voxtrace can place.
+    BadVox = 5,
 }
 
-/// The largest scene the page offers: a 512^3 volume (128 MiB dense).
+/// The largest terrain the page offers: a 512^3 volume (128 MiB dense).
 const MAX_SIZE: i32 = 256;
+
+/// What the page shows.
+enum Subject {
+    Terrain { seed: u64, size: i32 },
+    Model(Box<VoxModel>),
+}
+
+impl Subject {
+    fn bounds(&self) -> IAabb {
+        match self {
+            Subject::Terrain { size, .. } => IAabb::centered(*size),
+            Subject::Model(model) => model.bounds(),
+        }
+    }
+
+    fn shown(&self) -> Shown<'_> {
+        match self {
+            Subject::Terrain { size, .. } => Shown::Terrain(IAabb::centered(*size)),
+            Subject::Model(model) => Shown::Model(model),
+        }
+    }
+
+    fn model(&self) -> Option<&VoxModel> {
+        match self {
+            Subject::Model(model) => Some(model),
+            Subject::Terrain { .. } => None,
+        }
+    }
+}
 
 enum Built {
     Dense(DenseScene<Vec<u8>>),
     Octree(OctreeScene<Vec<Node>, Vec<u8>>),
 }
 
-/// The module's state: the last scene and its key, and the frame.
+/// The module's state: what to show, its built scene and the backend it
+/// was built for, the upload buffer, the frame and the message.
 struct State {
-    key: Option<(u64, i32, u32)>,
-    scene: Option<Built>,
+    subject: Option<Subject>,
+    scene: Option<(u32, Built)>,
+    upload: Vec<u8>,
     frame: Vec<u32>,
+    message: String,
 }
 
 static STATE: Mutex<State> = Mutex::new(State {
-    key: None,
+    subject: None,
     scene: None,
+    upload: Vec::new(),
     frame: Vec::new(),
+    message: String::new(),
 });
+
+fn state() -> std::sync::MutexGuard<'static, State> {
+    STATE.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Makes the terrain of `seed` and `size` the scene.
+#[no_mangle]
+pub extern "C" fn vt_terrain(seed_lo: u32, seed_hi: u32, size: i32) -> u32 {
+    let seed = u64::from(seed_hi) << 32 | u64::from(seed_lo);
+    let mut state = state();
+    if !(1..=MAX_SIZE.min(MAX_COORD)).contains(&size) {
+        return ErrorCode::BadScene as u32;
+    }
+    if !matches!(state.subject, Some(Subject::Terrain { seed: s, size: n }) if s == seed && n == size)
+    {
+        state.scene = None;
+        state.subject = Some(Subject::Terrain { seed, size });
+    }
+    ErrorCode::Ok as u32
+}
+
+/// Room for `len` bytes of a `.vox` file; null when they do not fit.
+#[no_mangle]
+pub extern "C" fn vt_upload(len: u32) -> *mut u8 {
+    let mut state = state();
+    state.upload = Vec::new();
+    if state.upload.try_reserve_exact(len as usize).is_err() {
+        return std::ptr::null_mut();
+    }
+    state.upload.resize(len as usize, 0);
+    state.upload.as_mut_ptr()
+}
+
+/// Makes the uploaded `.vox` file the scene.
+#[no_mangle]
+pub extern "C" fn vt_load_vox() -> u32 {
+    let mut state = state();
+    let bytes = std::mem::take(&mut state.upload);
+    match VoxModel::from_bytes(&bytes) {
+        Ok(model) => {
+            state.scene = None;
+            state.subject = Some(Subject::Model(Box::new(model)));
+            state.message.clear();
+            ErrorCode::Ok as u32
+        }
+        Err(e) => {
+            state.message = e.to_string();
+            ErrorCode::BadVox as u32
+        }
+    }
+}
 
 /// Builds (if needed) and renders; see the crate docs.
 #[no_mangle]
 #[allow(clippy::too_many_arguments)] // a C ABI export: flat numbers only
 pub extern "C" fn vt_render(
-    seed_lo: u32,
-    seed_hi: u32,
-    size: i32,
     backend: u32,
-    x: f32,
-    y: f32,
-    z: f32,
+    view: u32,
+    a: f32,
+    b: f32,
+    c: f32,
+    zoom: f32,
+    effects: u32,
+    ao_rays: u32,
     width: u32,
     height: u32,
 ) -> u32 {
-    let seed = u64::from(seed_hi) << 32 | u64::from(seed_lo);
-    let mut state = STATE.lock().unwrap_or_else(|e| e.into_inner());
-    render_into(
-        &mut state,
-        seed,
-        size,
+    let mut state = state();
+    let Some(view) = View::from_code(view, a, b, c) else {
+        return ErrorCode::BadScene as u32;
+    };
+    let Ok(ao_rays) = u16::try_from(ao_rays) else {
+        return ErrorCode::BadScene as u32;
+    };
+    let frame = Frame {
         backend,
-        Vec3::new(x, y, z),
+        view,
+        zoom,
+        effects,
+        ao_rays,
         width,
         height,
-    ) as u32
+    };
+    render_into(&mut state, &frame) as u32
 }
 
-fn render_into(
-    state: &mut State,
-    seed: u64,
-    size: i32,
+/// What one `vt_render` call asks for.
+struct Frame {
     backend: u32,
-    eye: Vec3,
+    view: View,
+    zoom: f32,
+    effects: u32,
+    ao_rays: u16,
     width: u32,
     height: u32,
-) -> ErrorCode {
-    if !(1..=MAX_SIZE.min(MAX_COORD)).contains(&size) || backend > 1 {
+}
+
+fn render_into(state: &mut State, f: &Frame) -> ErrorCode {
+    let State {
+        subject,
+        scene,
+        frame,
+        message,
+        ..
+    } = state;
+    let Some(subject) = subject.as_ref() else {
+        *message = "no scene yet: vt_terrain or vt_load_vox first".into();
+        return ErrorCode::BadScene;
+    };
+    if f.backend > 1 {
+        *message = format!("backend {} is neither 0 (dense) nor 1 (octree)", f.backend);
         return ErrorCode::BadScene;
     }
-    if state.key != Some((seed, size, backend)) || state.scene.is_none() {
-        state.scene = None; // free the old scene before building the new one
-        let terrain = VoxelGenerator::new(seed);
-        let bounds = IAabb::centered(size);
-        let built = if backend == 0 {
-            DenseScene::build(&terrain, bounds).map(Built::Dense)
-        } else {
-            OctreeScene::build(&terrain, bounds).map(Built::Octree)
-        };
-        match built {
-            Ok(scene) => state.scene = Some(scene),
-            Err(_) => return ErrorCode::Build,
+    if scene.as_ref().map(|(b, _)| *b) != Some(f.backend) {
+        *scene = None; // free the old scene before building the new one
+        match build(subject, f.backend) {
+            Ok(built) => *scene = Some((f.backend, built)),
+            Err(code) => {
+                *message = "the scene could not be built (out of memory)".into();
+                return code;
+            }
         }
-        state.key = Some((seed, size, backend));
     }
-    let Ok(camera) = Camera::new(CameraSettings {
-        width,
-        height,
-        lookfrom: eye,
-        ..CameraSettings::default()
-    }) else {
+    let Some(settings) = camera::settings(f.view, f.zoom, f.width, f.height, subject.shown())
+    else {
+        *message = "no camera for this view (a zoom that is not a positive number?)".into();
         return ErrorCode::BadCamera;
     };
-    let pixels = width as usize * height as usize;
-    state.frame.clear();
-    if state.frame.try_reserve_exact(pixels).is_err() {
+    let camera = match Camera::new(settings) {
+        Ok(camera) => camera,
+        Err(e) => {
+            *message = e.to_string();
+            return ErrorCode::BadCamera;
+        }
+    };
+    let pixels = f.width as usize * f.height as usize;
+    frame.clear();
+    if frame.try_reserve_exact(pixels).is_err() {
+        *message = format!("no memory for a {}x{} frame", f.width, f.height);
         return ErrorCode::Render;
     }
-    state.frame.resize(pixels, 0);
-    let options = RenderOptions::default();
-    let rendered = match &state.scene {
-        Some(Built::Dense(scene)) => render(scene, &camera, &options, &mut state.frame),
-        Some(Built::Octree(scene)) => render(scene, &camera, &options, &mut state.frame),
+    frame.resize(pixels, 0);
+    let model = subject.model();
+    let options = options::render_options(f.effects, f.ao_rays, subject.bounds(), model);
+    let rendered = match scene {
+        Some((_, Built::Dense(s))) => draw(s, model, &camera, &options, frame),
+        Some((_, Built::Octree(s))) => draw(s, model, &camera, &options, frame),
         None => return ErrorCode::Build,
     };
-    if rendered.is_ok() {
-        ErrorCode::Ok
-    } else {
-        ErrorCode::Render
+    if !rendered {
+        *message = "the frame could not be rendered".into();
+        return ErrorCode::Render;
+    }
+    *message = camera::describe(&settings);
+    ErrorCode::Ok
+}
+
+fn build(subject: &Subject, backend: u32) -> Result<Built, ErrorCode> {
+    let bounds = subject.bounds();
+    let built = match (subject, backend) {
+        (Subject::Terrain { seed, .. }, 0) => {
+            DenseScene::build(&VoxelGenerator::new(*seed), bounds).map(Built::Dense)
+        }
+        (Subject::Terrain { seed, .. }, _) => {
+            OctreeScene::build(&VoxelGenerator::new(*seed), bounds).map(Built::Octree)
+        }
+        (Subject::Model(model), 0) => DenseScene::build(model.as_ref(), bounds).map(Built::Dense),
+        (Subject::Model(model), _) => OctreeScene::build(model.as_ref(), bounds).map(Built::Octree),
+    };
+    built.map_err(|_| ErrorCode::Build)
+}
+
+/// Renders `scene` with the model's materials when there is a model (as
+/// the CLI does), into `frame`; whether it rendered.
+fn draw<S: Scene>(
+    scene: &S,
+    model: Option<&VoxModel>,
+    camera: &Camera,
+    options: &RenderOptions,
+    frame: &mut [u32],
+) -> bool {
+    match model {
+        Some(m) => {
+            let scene = WithMaterials::new(scene, m.materials(), m.emitters());
+            render(&scene, camera, options, frame).is_ok()
+        }
+        None => render(scene, camera, options, frame).is_ok(),
     }
 }
 
 /// Address of the frame's first pixel in linear memory.
 #[no_mangle]
 pub extern "C" fn vt_frame_ptr() -> *const u32 {
-    STATE.lock().map_or(std::ptr::null(), |s| s.frame.as_ptr())
+    state().frame.as_ptr()
 }
 
 /// Pixels in the frame.
 #[no_mangle]
 pub extern "C" fn vt_frame_len() -> u32 {
-    STATE.lock().map_or(0, |s| s.frame.len() as u32)
+    state().frame.len() as u32
+}
+
+/// Address of the message's first byte (see the crate docs).
+#[no_mangle]
+pub extern "C" fn vt_message_ptr() -> *const u8 {
+    state().message.as_ptr()
+}
+
+/// Bytes in the message.
+#[no_mangle]
+pub extern "C" fn vt_message_len() -> u32 {
+    state().message.len() as u32
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn renders_the_desktop_pixels_and_rejects_bad_input() {
-        let code = vt_render(3, 0, 20, 1, 30.0, 40.0, 20.0, 48, 32);
-        assert_eq!(code, ErrorCode::Ok as u32);
-        let frame = STATE.lock().unwrap().frame.clone();
-        let scene = OctreeScene::build(&VoxelGenerator::new(3), IAabb::centered(20)).unwrap();
-        let camera = Camera::new(CameraSettings {
-            width: 48,
-            height: 32,
-            lookfrom: Vec3::new(30.0, 40.0, 20.0),
-            ..CameraSettings::default()
-        })
-        .unwrap();
-        let mut expected = vec![0; 48 * 32];
-        render(&scene, &camera, &RenderOptions::default(), &mut expected).unwrap();
-        assert_eq!(frame, expected);
-        assert_eq!(vt_frame_len(), 48 * 32);
-
-        assert_eq!(
-            vt_render(3, 0, 0, 1, 30.0, 40.0, 20.0, 8, 8),
-            ErrorCode::BadScene as u32
-        );
-        assert_eq!(
-            vt_render(3, 0, 20, 2, 30.0, 40.0, 20.0, 8, 8),
-            ErrorCode::BadScene as u32
-        );
-        assert_eq!(
-            vt_render(3, 0, 20, 0, 0.0, 0.0, 0.0, 8, 8),
-            ErrorCode::BadCamera as u32
-        );
-        assert_eq!(
-            vt_render(3, 0, 20, 0, 1.0, 2.0, 3.0, 0, 8),
-            ErrorCode::BadCamera as u32
-        );
-    }
-}
+mod tests;
