@@ -52,7 +52,7 @@ pub(super) struct Entry {
 impl Entry {
     /// The entry into `region` that [`Walk::start`] finds, or `None` when
     /// the ray misses it.
-    #[inline]
+    #[inline(always)]
     pub(super) fn new(ray: &Ray, region: &IAabb) -> Option<Entry> {
         if let Some(entry) = Entry::inside(ray, region) {
             return Some(entry);
@@ -115,7 +115,10 @@ impl Entry {
 
     /// [`Walk::start`] for an origin outside `region` (and within
     /// [`EXACT`]): `Some` of its answer, or `None` when a guess does not
-    /// check out.
+    /// check out. Kept out of line: inlined, it keeps `new` from being
+    /// inlined into the walk, and the common case of secondary rays (an
+    /// origin inside) would pay for returning the entry through memory.
+    #[inline(never)]
     fn outside(ray: &Ray, region: &IAabb) -> Option<Option<Entry>> {
         if ray.origin().abs().cmpge(glam::Vec3::splat(EXACT)).any() {
             return None;
