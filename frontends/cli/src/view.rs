@@ -1,6 +1,6 @@
 //! The camera flags (`--up`, `--projection`, `--ortho-height`, `--view`,
-//! `--orbit`, `--camera`, `--background`) parsed into the core's types, and the one
-//! camera they describe together.
+//! `--orbit`, `--camera`, `--background`) parsed into the core's types,
+//! and the one camera they describe together.
 
 use clap::ValueEnum;
 use voxtrace::glam::{U8Vec3, Vec3};

@@ -28,7 +28,7 @@ use glam::Vec3;
 
 use crate::source::vox::chunks::{chunks, dict, numbers, u32_at};
 
-/// What `_mode` a camera has.
+/// What `_mode` a camera has (an absent or unknown mode is perspective).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum VoxCameraMode {
     /// `pers`: a perspective camera orbiting its target.
@@ -42,8 +42,6 @@ pub enum VoxCameraMode {
     Isometric,
     /// `pano`: a panorama, which voxtrace does not render.
     Panorama,
-    /// Any other or no `_mode`.
-    Unknown,
 }
 
 impl VoxCameraMode {
