@@ -2,8 +2,10 @@
 //! materials used, no sun, sky or camera settings) render the same pixels
 //! as commit b8c9a6d (before materials) with the same flags and an explicit
 //! camera. The hashes below are of the pixels b8c9a6d's binary wrote for
-//! these commands; `VOXTRACE_BASE_BIN=/path/to/that/voxtrace` compares
-//! against a binary directly instead. Skipped with a notice when
+//! these commands (built from `git archive b8c9a6d`, compared pixel for
+//! pixel with this branch's before they were recorded);
+//! `VOXTRACE_BASE_BIN=/path/to/that/voxtrace` compares against a binary
+//! directly instead. Skipped with a notice when
 //! `../shared/scenes/vox` is absent.
 
 use std::path::{Path, PathBuf};
@@ -12,10 +14,30 @@ use std::process::Command;
 /// Each file, its camera, and the FNV-1a hash of the RGBA pixels b8c9a6d
 /// wrote for the default look and for `--shadows --ao 4 --spp 2 --fog`.
 const FILES: [(&str, &str, &str, [u64; 2]); 4] = [
-    ("chr_riotcop.vox", "8,2,11", "0.5,-4,-0.5", [0, 0]),
-    ("veh_car1.vox", "9,5,24", "0,-1,0", [0, 0]),
-    ("scene_house6.vox", "62,40,113", "0,-10,0", [0, 0]),
-    ("scene_store8.vox", "42,30,115", "-2,-10,0", [0, 0]),
+    (
+        "chr_riotcop.vox",
+        "8,2,11",
+        "0.5,-4,-0.5",
+        [0x69525ad17b152cc8, 0x754fc4a8c23bd053],
+    ),
+    (
+        "veh_car1.vox",
+        "9,5,24",
+        "0,-1,0",
+        [0x4c101bce12e038da, 0xf251d0d99f24b4a6],
+    ),
+    (
+        "scene_house6.vox",
+        "62,40,113",
+        "0,-10,0",
+        [0xaed98118fe165698, 0x1863f7bab90f31b2],
+    ),
+    (
+        "scene_store8.vox",
+        "42,30,115",
+        "-2,-10,0",
+        [0xb16196d4cddd118d, 0x513a6b4e1cab8273],
+    ),
 ];
 
 const LOOKS: [&[&str]; 2] = [&[], &["--shadows", "--ao", "4", "--spp", "2", "--fog"]];
@@ -29,7 +51,14 @@ fn scratch(name: &str) -> PathBuf {
 /// The RGBA pixels `binary` writes for `file` with `camera` and `look`.
 fn pixels(binary: &Path, file: &Path, camera: (&str, &str), look: &[&str], out: &Path) -> Vec<u8> {
     let result = Command::new(binary)
-        .args(["--vox", file.to_str().unwrap(), "--position", camera.0, "--lookat", camera.1])
+        .args([
+            "--vox",
+            file.to_str().unwrap(),
+            "--position",
+            camera.0,
+            "--lookat",
+            camera.1,
+        ])
         .args(["--width", "160", "--height", "90", "--threads", "2"])
         .args(look)
         .args(["--out", out.to_str().unwrap()])
@@ -68,7 +97,13 @@ fn diffuse_files_render_the_pixels_of_b8c9a6d() {
     for (name, position, lookat, hashes) in FILES {
         for (look, want) in LOOKS.iter().zip(hashes) {
             let file = dir.join(name);
-            let now = pixels(&current, &file, (position, lookat), look, &scratch("now.png"));
+            let now = pixels(
+                &current,
+                &file,
+                (position, lookat),
+                look,
+                &scratch("now.png"),
+            );
             let got = fnv1a(&now);
             match &base {
                 Some(base) => {
@@ -79,7 +114,9 @@ fn diffuse_files_render_the_pixels_of_b8c9a6d() {
                     println!("{name} {look:?}: {got:#018x}");
                 }
                 None if got != want => {
-                    wrong.push(format!("{name} {look:?}: hash {got:#018x}, b8c9a6d's {want:#018x}"));
+                    wrong.push(format!(
+                        "{name} {look:?}: hash {got:#018x}, b8c9a6d's {want:#018x}"
+                    ));
                 }
                 None => {}
             }
