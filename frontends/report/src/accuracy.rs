@@ -1,8 +1,10 @@
 //! `voxtrace-report accuracy`: what accuracy costs in time. Renders a
 //! converged reference of one scene, then each setting along each accuracy
 //! axis, and records time, rays and error (RMSE, PSNR) against the
-//! reference. Then the geometric section ([`crate::geometric`]): the exact
-//! walk against a textbook float-accumulating one, time and pixels differing.
+//! reference. Then the path-traced material scenes over samples per pixel x
+//! bounces ([`crate::path_accuracy`]), and the geometric section
+//! ([`crate::geometric`]): the exact walk against a textbook
+//! float-accumulating one, time and pixels differing.
 
 use std::fmt::Write as _;
 

@@ -20,7 +20,7 @@ use voxtrace::{
 use voxtrace_cli::{fit, Boxes};
 
 use crate::accuracy::{psnr, rmse};
-use crate::measure::{format_ms, median_of};
+use crate::measure::{count_of, format_ms, median_of};
 use crate::plot::{Chart, Line, Series};
 
 /// Where study.vox is, from the repository root; skipped when absent.
@@ -111,7 +111,6 @@ fn room_voxel(p: IVec3) -> u8 {
 }
 
 /// Renders `scene` at every setting of `grid` and against its reference.
-#[allow(clippy::too_many_arguments)]
 fn measure<S: Scene + Sync>(
     name: &str,
     about: String,
@@ -286,10 +285,11 @@ pub fn section(measured: &[Measured], grid: &Grid, runs: usize) -> String {
     let _ = writeln!(
         md,
         "\n### Materials: samples per pixel x bounces\n\n\
-         Path-traced frames at {width}x{height}, median of {runs} run(s) per setting; \
+         Path-traced frames at {width}x{height}, median of {} per setting; \
          bounces N as `--bounces N` (diffuse and specular alike). Error against a \
          reference of {} samples per pixel at {most} bounces, which is itself noisy: \
          its own error floors the figures at about the last rows' size.\n",
+        count_of(runs, "run"),
         grid.reference_spp
     );
     if !measured.iter().any(|m| m.name == "study.vox") {

@@ -10,7 +10,8 @@
 //! near plane's half height per unit distance: `tan(fov / 2)` for a
 //! perspective camera) and `_fov` (the vertical field of view in degrees).
 //! A key that is absent takes MagicaVoxel's default (focus and angles 0,
-//! radius 0, frustum 0.414214, fov 45); a value that is not numbers is a
+//! radius 0, frustum 0.414214, fov 45); a value that is not numbers, or out
+//! of range (a negative radius, a field of view outside (0, 180)), is a
 //! warning and the default.
 //!
 //! MagicaVoxel does not document which way a camera with zero angles
@@ -37,8 +38,7 @@ pub enum VoxCameraMode {
     Free,
     /// `orth`: parallel rays.
     Orthographic,
-    /// `iso`: parallel rays (MagicaVoxel steps its angles; the file's are
-    /// used as they are).
+    /// `iso`: parallel rays, at the file's angles.
     Isometric,
     /// `pano`: a panorama, which voxtrace does not render.
     Panorama,
