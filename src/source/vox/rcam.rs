@@ -205,24 +205,35 @@ fn camera(content: &[u8], warnings: &mut Vec<String>) -> Option<VoxCamera> {
     })
 }
 
+/// The most warning lines the cameras add: a hostile file can hold a
+/// camera every 20 bytes, MagicaVoxel files hold 10.
+const MAX_WARNINGS: usize = 16;
+
 /// The cameras of the file in `bytes`, by id (the first of a repeated
-/// id), with one warning line per value not used as it is.
+/// id), with one warning line per value not used as it is (at most
+/// [`MAX_WARNINGS`], then one line counting the rest).
 pub(crate) fn cameras(bytes: &[u8], warnings: &mut Vec<String>) -> Vec<VoxCamera> {
-    let mut out: Vec<VoxCamera> = Vec::new();
-    for content in chunks(bytes, b"rCAM") {
-        if let Some(c) = camera(content, warnings) {
-            if out.iter().all(|o| o.id != c.id) {
-                out.push(c);
-            }
-        }
-    }
+    let mut mine = Vec::new();
+    let mut out: Vec<VoxCamera> = chunks(bytes, b"rCAM")
+        .into_iter()
+        .filter_map(|content| camera(content, &mut mine))
+        .collect();
+    // Stable: the first camera of each id stays first, and dedup keeps it.
     out.sort_by_key(|c| c.id);
+    out.dedup_by_key(|c| c.id);
+    let more = mine.len().saturating_sub(MAX_WARNINGS);
+    mine.truncate(MAX_WARNINGS);
+    warnings.extend(mine);
+    if more > 0 {
+        warnings.push(format!("{more} more unusable rCAM values not listed"));
+    }
     out
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::vec;
 
     /// A file of MAIN holding one rCAM chunk per `(id, pairs)`.
     fn file(cams: &[(u32, &[(&str, &str)])]) -> Vec<u8> {
@@ -363,6 +374,20 @@ mod tests {
             (c.focus, c.radius, c.frustum, c.fov),
             (Vec3::ZERO, 0.0, 0.414_214, 45.0)
         );
+    }
+
+    #[test]
+    fn a_repeated_id_keeps_the_first_and_many_warnings_are_counted() {
+        let bad: &[(&str, &str)] = &[("_fov", "0")];
+        let mut cams: Vec<(u32, &[(&str, &str)])> =
+            vec![(5, &[("_fov", "30")]), (5, &[("_fov", "60")])];
+        cams.extend((100..140).map(|id| (id, bad)));
+        let mut w = Vec::new();
+        let found = cameras(&file(&cams), &mut w);
+        assert_eq!(found.len(), 41);
+        assert_eq!((found[0].id, found[0].fov), (5, 30.0));
+        assert_eq!(w.len(), MAX_WARNINGS + 1, "{w:?}");
+        assert_eq!(w[MAX_WARNINGS], "24 more unusable rCAM values not listed");
     }
 
     #[test]
