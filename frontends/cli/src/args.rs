@@ -76,6 +76,12 @@ pub struct Args {
     #[arg(long, value_name = "YAW,PITCH[,DISTANCE]", value_parser = parse_orbit, allow_hyphen_values = true)]
     pub orbit: Option<OrbitArg>,
 
+    /// Render from the --vox file's own camera N (its rCAM camera id, as
+    /// MagicaVoxel numbers them): position, target, up and projection come
+    /// from the file.
+    #[arg(long, value_name = "N", conflicts_with_all = ["position", "lookat", "view", "orbit", "up", "fov", "projection", "ortho_height"])]
+    pub camera: Option<u32>,
+
     /// Render N frames of a turntable: the camera turns 360 degrees about
     /// the vertical through its target; --out needs a run of # for the
     /// frame number (spin_####.png), frames count from 1.

@@ -12,6 +12,7 @@ mod memory;
 mod output;
 mod progress;
 mod view;
+mod vox_camera;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -132,6 +133,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
                 boxes: Boxes::Bounds(IAabb::centered(args.size)),
                 target: Vec3::ZERO,
                 default_position: Some(CameraSettings::paper(args.size).lookfrom),
+                cameras: None,
             },
         ),
         Subject::Model(model) => (
@@ -140,6 +142,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
                 boxes: Boxes::Model(model),
                 target: (model.bounds().min + model.bounds().max).as_vec3() * 0.5,
                 default_position: None,
+                cameras: args.vox.as_deref().map(|path| (path, model.cameras())),
             },
         ),
     };

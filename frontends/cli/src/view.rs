@@ -1,6 +1,6 @@
 //! The camera flags (`--up`, `--projection`, `--ortho-height`, `--view`,
-//! `--orbit`, `--background`) parsed into the core's types, and the one
-//! camera they describe together.
+//! `--orbit`, `--camera`, `--background`) parsed into the core's types,
+//! and the one camera they describe together.
 
 use clap::ValueEnum;
 use voxtrace::glam::{U8Vec3, Vec3};
@@ -8,6 +8,7 @@ use voxtrace::{Background, CameraSettings, Framer, Orbit, Projection, ViewPreset
 use voxtrace_cli::{fit, Boxes, FILL, MODEL_VIEW};
 
 use crate::args::{parse_numbers, Args};
+use crate::vox_camera::{file_camera, FileCameras};
 
 /// `--projection`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -116,6 +117,8 @@ pub struct Stage<'a> {
     /// The camera without --position, --view or --orbit: the paper's fixed
     /// position for the terrain, `None` to frame the boxes (a model).
     pub default_position: Option<Vec3>,
+    /// The cameras `--camera` picks from (`None`: the terrain).
+    pub cameras: FileCameras<'a>,
 }
 
 /// The one camera the flags describe.
@@ -124,6 +127,9 @@ pub struct Stage<'a> {
 /// A one-line message when no camera can be made (for example a zero
 /// direction); the camera itself is validated by `Camera::new` afterwards.
 pub fn camera_settings(args: &Args, stage: &Stage<'_>) -> Result<CameraSettings, String> {
+    if let Some(n) = args.camera {
+        return file_camera(args, n, stage.cameras);
+    }
     let orthographic =
         args.projection == ProjectionArg::Orthographic || args.view == Some(ViewArg::Iso);
     let base = CameraSettings {

@@ -1,8 +1,10 @@
 //! `voxtrace-report accuracy`: what accuracy costs in time. Renders a
 //! converged reference of one scene, then each setting along each accuracy
 //! axis, and records time, rays and error (RMSE, PSNR) against the
-//! reference. Then the geometric section ([`crate::geometric`]): the exact
-//! walk against a textbook float-accumulating one, time and pixels differing.
+//! reference. Then the path-traced material scenes over samples per pixel x
+//! bounces ([`crate::path_accuracy`]), and the geometric section
+//! ([`crate::geometric`]): the exact walk against a textbook
+//! float-accumulating one, time and pixels differing.
 
 use std::fmt::Write as _;
 
@@ -16,6 +18,7 @@ use voxtrace_cli::on_threads;
 use crate::common_args::Output;
 use crate::geometric;
 use crate::measure::{count_of, cpu_name, format_ms, median_of};
+use crate::path_accuracy;
 use crate::plot::{Chart, Line, Series};
 use plotters::chart::SeriesLabelPosition;
 
@@ -171,6 +174,15 @@ pub fn run(args: &AccuracyArgs) -> Result<(), String> {
     };
     let geometric_rows = geometric::measure(SEED, sizes, (width, height), runs)?;
 
+    let grid = if args.quick {
+        &path_accuracy::QUICK
+    } else {
+        &path_accuracy::GRID
+    };
+    let materials = on_threads(args.output.threads, || {
+        path_accuracy::measure_all(grid, runs)
+    })?;
+
     let command = format!(
         "cargo run --release -p voxtrace-report -- accuracy{}",
         if args.full {
@@ -182,19 +194,23 @@ pub fn run(args: &AccuracyArgs) -> Result<(), String> {
         }
     );
     let mut md = table(&rows, &command, width, height, threads, runs, reference_ms);
+    md.push_str(&path_accuracy::section(&materials, grid, runs));
     md.push_str(&geometric::section(
         &geometric_rows,
         SEED,
         (width, height),
         runs,
     ));
-    args.output
-        .write("accuracy", &md, &[chart(&rows, width, height)])?;
+    let charts = [
+        chart(&rows, width, height),
+        path_accuracy::chart(&materials, grid),
+    ];
+    args.output.write("accuracy", &md, &charts)?;
     Ok(())
 }
 
 /// Root mean square difference over every color channel, in 0..=255 units.
-fn rmse(pixels: &[u32], reference: &[u32]) -> f64 {
+pub(crate) fn rmse(pixels: &[u32], reference: &[u32]) -> f64 {
     let mut sum = 0.0;
     for (&p, &r) in pixels.iter().zip(reference) {
         let (p, r) = (unpack(p), unpack(r));
@@ -207,7 +223,7 @@ fn rmse(pixels: &[u32], reference: &[u32]) -> f64 {
 }
 
 /// Peak signal to noise ratio for 8-bit channels; infinite for no error.
-fn psnr(rmse: f64) -> f64 {
+pub(crate) fn psnr(rmse: f64) -> f64 {
     20.0 * (255.0 / rmse).log10()
 }
 

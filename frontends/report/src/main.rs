@@ -9,6 +9,7 @@ mod common_args;
 mod geometric;
 mod measure;
 mod naive_dda;
+mod path_accuracy;
 mod plot;
 mod speed;
 mod speed_data;
@@ -35,7 +36,8 @@ enum Report {
     /// --vs-binary, a "speedup vs" table against another voxtrace binary.
     Speed(speed::SpeedArgs),
     /// Render time, rays and error against a converged reference for each
-    /// setting of each accuracy axis (samples, AO rays, shadows); then the
+    /// setting of each accuracy axis (samples, AO rays, shadows), and of
+    /// spp x bounces on path-traced material scenes; then the
     /// exact walk against a textbook float-accumulating one (time, pixels
     /// whose hit voxel differs) at the paper's sizes.
     Accuracy(accuracy::AccuracyArgs),

@@ -27,10 +27,10 @@ use glam::{IVec3, Vec3};
 use crate::geom::Ray;
 use crate::material::{MaterialKind, Materials};
 use crate::render::camera::Camera;
-use crate::render::options::{Bounces, Fog, RenderOptions};
+use crate::render::options::{Background, Bounces, Fog, RenderOptions};
 use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
-use crate::render::shade::{pack, sky, to_u8, SKY_HORIZON};
+use crate::render::shade::{pack, pack_alpha, sky, to_u8, SKY_HORIZON};
 use crate::render::stats::RayStats;
 use crate::scene::Scene;
 
@@ -84,6 +84,8 @@ pub(crate) struct PathSetup<'m> {
     pub(crate) samples: u16,
     /// Distance fog on the first hit.
     pub(crate) fog: Option<Fog>,
+    /// What a camera sample that hits nothing shows.
+    pub(crate) background: Background,
 }
 
 impl<'m> PathSetup<'m> {
@@ -108,6 +110,7 @@ impl<'m> PathSetup<'m> {
             bounces: light.bounces,
             samples: options.samples,
             fog: options.fog,
+            background: options.background,
         }
     }
 
@@ -139,6 +142,14 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
         let samples = u32::from(self.setup.samples.max(1));
         let mut sum = Vec3::ZERO;
         let mut stats = RayStats::default();
+        // The background rules of the face-shaded look: a camera sample
+        // that misses shows the sky (the environment's radiance), the
+        // --background color, or nothing (alpha covers the hits).
+        let background = match self.setup.background {
+            Background::Color(c) => Some(c.as_vec3() * (1.0 / 255.0)),
+            Background::Sky | Background::Transparent => None,
+        };
+        let transparent = self.setup.background == Background::Transparent;
         for s in 0..samples {
             // The anti-aliasing offsets of the face-shaded look.
             let ray = if samples == 1 {
@@ -154,11 +165,28 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
                 sample: s,
                 event: 0,
             };
+            let hits = stats.primary_hits;
             let radiance = self.radiance(scene, &ray, t_start, &mut rng, &mut stats);
+            let missed = stats.primary_hits == hits;
+            let radiance = match (missed, background) {
+                (true, Some(color)) => color,
+                (true, None) if transparent => Vec3::ZERO,
+                _ => radiance,
+            };
             // A NaN from degenerate geometry is dropped, never averaged in.
             if radiance.is_finite() {
                 sum += radiance.clamp(Vec3::ZERO, Vec3::splat(MAX_RADIANCE));
             }
+        }
+        if transparent {
+            // The mean of the hits, covering the share of samples that hit.
+            let hits = stats.primary_hits as u32;
+            if hits == 0 {
+                return (0, stats);
+            }
+            let mean = to_u8(sum * (255.0 / hits as f32));
+            let alpha = (255 * hits + samples / 2) / samples;
+            return (pack_alpha(mean, alpha as u8), stats);
         }
         (pack(to_u8(sum * (255.0 / samples as f32))), stats)
     }

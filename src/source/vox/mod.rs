@@ -13,10 +13,13 @@ use glam::{IVec3, U8Vec3};
 
 use crate::geom::{IAabb, MAX_COORD};
 use crate::material::{MaterialKind, Materials};
+use crate::source::vox::rcam::VoxCamera;
 use crate::source::vox::robj::VoxSettings;
 use crate::source::vox::scene_graph::{placements, Placement, VoxError, MAX_PLACED};
 
+pub(crate) mod chunks;
 pub(crate) mod matl;
+pub(crate) mod rcam;
 pub(crate) mod robj;
 pub(crate) mod scene_graph;
 use crate::voxel::{fill_by_position, holds, Palette, Region, VoxelSource};
@@ -53,6 +56,8 @@ pub struct VoxModel {
     /// Emissive voxels, sorted, so the light list is the same every load.
     emitters: Vec<IVec3>,
     settings: VoxSettings,
+    /// The rCAM cameras, by id.
+    cameras: Vec<VoxCamera>,
     warnings: Vec<String>,
 }
 
@@ -124,8 +129,10 @@ impl VoxModel {
             materials: Box::new(Materials::all_diffuse()),
             emitters: Vec::new(),
             settings: robj::settings(bytes),
+            cameras: Vec::new(),
             warnings: Vec::new(),
         };
+        model.cameras = rcam::cameras(bytes, &mut model.warnings);
         for p in &placed {
             for v in &data.models[p.model].voxels {
                 model.place(world(p, v), v.i + 1)?;
@@ -192,7 +199,13 @@ impl VoxModel {
         &self.settings
     }
 
-    /// One line per MATL value that was not a number, out of range or
+    /// The file's cameras (its rCAM chunks), sorted by id.
+    #[must_use]
+    pub fn cameras(&self) -> &[VoxCamera] {
+        &self.cameras
+    }
+
+    /// One line per MATL or rCAM value that was not a number, out of range or
     /// missing (naming the material id and key), and per kind of material
     /// not simulated.
     #[must_use]

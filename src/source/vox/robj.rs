@@ -13,9 +13,10 @@
 
 use std::collections::HashMap;
 use std::string::String;
-use std::vec::Vec;
 
 use glam::Vec3;
+
+use crate::source::vox::chunks::{chunks, dict, numbers};
 
 /// The light and bounce settings a file holds.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -40,84 +41,6 @@ pub struct VoxSun {
     pub radius: f32,
 }
 
-/// A little-endian `u32` at `at`, if the bytes are there.
-fn u32_at(bytes: &[u8], at: usize) -> Option<u32> {
-    let b = bytes.get(at..at.checked_add(4)?)?;
-    Some(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-}
-
-/// A MagicaVoxel DICT (count, then length-prefixed key and value strings).
-fn dict(bytes: &[u8]) -> Option<HashMap<String, String>> {
-    let count = u32_at(bytes, 0)? as usize;
-    let mut at = 4;
-    let mut out = HashMap::new();
-    let text = |at: &mut usize| -> Option<String> {
-        let len = u32_at(bytes, *at)? as usize;
-        let start = at.checked_add(4)?;
-        let s = bytes.get(start..start.checked_add(len)?)?;
-        *at = start + len;
-        Some(String::from_utf8_lossy(s).into_owned())
-    };
-    // Each pair takes at least 8 bytes: a count past that is malformed.
-    if count > bytes.len() / 8 {
-        return None;
-    }
-    for _ in 0..count {
-        let key = text(&mut at)?;
-        let value = text(&mut at)?;
-        out.insert(key, value);
-    }
-    Some(out)
-}
-
-/// The dictionaries of every rOBJ chunk among MAIN's children, in file
-/// order; malformed chunks are skipped (dot_vox has read the file already).
-fn robj_dicts(bytes: &[u8]) -> Vec<HashMap<String, String>> {
-    let mut out = Vec::new();
-    // "VOX ", version, then MAIN: id, content size, children size.
-    if bytes.get(..4) != Some(b"VOX ") || bytes.get(8..12) != Some(b"MAIN") {
-        return out;
-    }
-    let Some(content) = u32_at(bytes, 12) else {
-        return out;
-    };
-    let mut at = 20usize.saturating_add(content as usize);
-    while let (Some(id), Some(size), Some(children)) = (
-        bytes.get(at..at + 4),
-        u32_at(bytes, at + 4),
-        u32_at(bytes, at + 8),
-    ) {
-        let start = at + 12;
-        let Some(end) = start.checked_add(size as usize) else {
-            break;
-        };
-        if id == b"rOBJ" {
-            if let Some(d) = bytes.get(start..end).and_then(dict) {
-                out.push(d);
-            }
-        }
-        let Some(next) = end.checked_add(children as usize) else {
-            break;
-        };
-        at = next;
-    }
-    out
-}
-
-/// Numbers separated by spaces.
-fn numbers<const N: usize>(text: Option<&String>) -> Option<[f32; N]> {
-    let mut out = [0.0; N];
-    let mut parts = text?.split_whitespace();
-    for slot in &mut out {
-        *slot = parts
-            .next()?
-            .parse::<f32>()
-            .ok()
-            .filter(|v| v.is_finite())?;
-    }
-    Some(out)
-}
-
 /// Intensity `_i` times color `_k` (0-255 per channel).
 fn radiance(d: &HashMap<String, String>) -> Option<Vec3> {
     let [i] = numbers::<1>(d.get("_i"))?;
@@ -129,7 +52,8 @@ fn radiance(d: &HashMap<String, String>) -> Option<Vec3> {
 /// The settings of the file in `bytes`.
 pub(crate) fn settings(bytes: &[u8]) -> VoxSettings {
     let mut s = VoxSettings::default();
-    for d in robj_dicts(bytes) {
+    // Malformed chunks are skipped: dot_vox has read the file already.
+    for d in chunks(bytes, b"rOBJ").into_iter().filter_map(dict) {
         match d.get("_type").map(String::as_str) {
             Some("_inf") => {
                 let Some(light) = radiance(&d) else { continue };
@@ -163,6 +87,7 @@ pub(crate) fn settings(bytes: &[u8]) -> VoxSettings {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::vec::Vec;
 
     /// A file of MAIN with one rOBJ chunk holding `pairs`.
     fn file(pairs: &[(&str, &str)]) -> Vec<u8> {

@@ -270,6 +270,35 @@ pub fn hostile_files() -> Vec<(String, Vec<u8>)> {
         &[("_type", "_bounce"), ("_diffuse", "\u{0}\u{ff}")],
     );
     cases.push(("robj-odd-values.vox".into(), dict_chunk(b"rOBJ", robj)));
+    // rCAM: an id with a dictionary count that lies, and values that are
+    // not numbers or out of range.
+    let mut rcam = Vec::new();
+    int(&mut rcam, 0);
+    int(&mut rcam, i32::MAX);
+    cases.push(("rcam-count-lies.vox".into(), dict_chunk(b"rCAM", rcam)));
+    let mut rcam = Vec::new();
+    int(&mut rcam, -1);
+    dict(
+        &mut rcam,
+        &[
+            ("_mode", "orth"),
+            ("_focus", "1e39 nan \u{0}"),
+            ("_radius", "-1e999"),
+            ("_fov", "180"),
+        ],
+    );
+    cases.push(("rcam-odd-values.vox".into(), dict_chunk(b"rCAM", rcam)));
+    // 100,000 cameras in 2 MB (MagicaVoxel writes 10): read in linear time,
+    // their warnings counted rather than listed.
+    let many: Vec<Vec<u8>> = (0..100_000)
+        .map(|id: i32| {
+            let mut c = Vec::new();
+            int(&mut c, id);
+            dict(&mut c, &[("_fov", "0")]);
+            chunk(b"rCAM", &c, &[])
+        })
+        .collect();
+    cases.push(("rcam-many.vox".into(), with(many)));
     // Chunk headers whose sizes lie.
     let mut lying = small_scene();
     lying[16..20].copy_from_slice(&u32::MAX.to_le_bytes()); // MAIN's children size

@@ -1,0 +1,126 @@
+//! The shared `.vox` files that call for nothing new (only diffuse
+//! materials used, no sun, sky or camera settings) render the same pixels
+//! as commit b8c9a6d (before materials) with the same flags and an explicit
+//! camera. The hashes below are of the pixels b8c9a6d's binary wrote for
+//! these commands (built from `git archive b8c9a6d`, compared pixel for
+//! pixel with this branch's before they were recorded);
+//! `VOXTRACE_BASE_BIN=/path/to/that/voxtrace` compares against a binary
+//! directly instead. Skipped with a notice when
+//! `../shared/scenes/vox` is absent.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Each file, its camera, and the FNV-1a hash of the RGBA pixels b8c9a6d
+/// wrote for the default look and for `--shadows --ao 4 --spp 2 --fog`.
+const FILES: [(&str, &str, &str, [u64; 2]); 4] = [
+    (
+        "chr_riotcop.vox",
+        "8,2,11",
+        "0.5,-4,-0.5",
+        [0x69525ad17b152cc8, 0x754fc4a8c23bd053],
+    ),
+    (
+        "veh_car1.vox",
+        "9,5,24",
+        "0,-1,0",
+        [0x4c101bce12e038da, 0xf251d0d99f24b4a6],
+    ),
+    (
+        "scene_house6.vox",
+        "62,40,113",
+        "0,-10,0",
+        [0xaed98118fe165698, 0x1863f7bab90f31b2],
+    ),
+    (
+        "scene_store8.vox",
+        "42,30,115",
+        "-2,-10,0",
+        [0xb16196d4cddd118d, 0x513a6b4e1cab8273],
+    ),
+];
+
+const LOOKS: [&[&str]; 2] = [&[], &["--shadows", "--ao", "4", "--spp", "2", "--fog"]];
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("diffuse_identity");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+/// The RGBA pixels `binary` writes for `file` with `camera` and `look`.
+fn pixels(binary: &Path, file: &Path, camera: (&str, &str), look: &[&str], out: &Path) -> Vec<u8> {
+    let result = Command::new(binary)
+        .args([
+            "--vox",
+            file.to_str().unwrap(),
+            "--position",
+            camera.0,
+            "--lookat",
+            camera.1,
+        ])
+        .args(["--width", "160", "--height", "90", "--threads", "2"])
+        .args(look)
+        .args(["--out", out.to_str().unwrap()])
+        .output()
+        .expect("the binary runs");
+    assert!(
+        result.status.success(),
+        "{}: {}",
+        binary.display(),
+        String::from_utf8_lossy(&result.stderr)
+    );
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(out).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    buf.truncate(info.buffer_size());
+    buf
+}
+
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}
+
+#[test]
+fn diffuse_files_render_the_pixels_of_b8c9a6d() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/scenes/vox");
+    if !dir.exists() {
+        eprintln!("skipping: {} is absent", dir.display());
+        return;
+    }
+    let current = PathBuf::from(env!("CARGO_BIN_EXE_voxtrace"));
+    let base = std::env::var_os("VOXTRACE_BASE_BIN").map(PathBuf::from);
+    let mut wrong = Vec::new();
+    for (name, position, lookat, hashes) in FILES {
+        for (look, want) in LOOKS.iter().zip(hashes) {
+            let file = dir.join(name);
+            let now = pixels(
+                &current,
+                &file,
+                (position, lookat),
+                look,
+                &scratch("now.png"),
+            );
+            let got = fnv1a(&now);
+            match &base {
+                Some(base) => {
+                    let then = pixels(base, &file, (position, lookat), look, &scratch("base.png"));
+                    if now != then {
+                        wrong.push(format!("{name} {look:?}: differs from {}", base.display()));
+                    }
+                    println!("{name} {look:?}: {got:#018x}");
+                }
+                None if got != want => {
+                    wrong.push(format!(
+                        "{name} {look:?}: hash {got:#018x}, b8c9a6d's {want:#018x}"
+                    ));
+                }
+                None => {}
+            }
+        }
+    }
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}

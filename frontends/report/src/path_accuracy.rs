@@ -1,0 +1,359 @@
+//! The accuracy report's material section: what samples per pixel and
+//! bounces cost in time and buy in error on path-traced frames. A voxel
+//! room the report builds itself (glass pane, metal mirror, emissive lamp;
+//! it stands without the shared files) and, when `../shared/scenes/vox` is
+//! there, study.vox with its own materials, sun and sky. Each scene: a
+//! converged reference (many samples, the most bounces), then every spp x
+//! bounces setting, with time, rays and error (RMSE, PSNR).
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Instant;
+
+use plotters::chart::SeriesLabelPosition;
+use voxtrace::glam::{IVec3, U8Vec3, Vec3};
+use voxtrace::{
+    render_parallel, Bounces, Camera, CameraSettings, FnSource, Framebuffer, IAabb, Lighting,
+    Material, Materials, OctreeScene, Orbit, Palette, RayStats, Rect, RenderOptions, Scene,
+    VoxModel, WithMaterials,
+};
+use voxtrace_cli::{fit, Boxes};
+
+use crate::accuracy::{psnr, rmse};
+use crate::measure::{count_of, format_ms, median_of};
+use crate::plot::{Chart, Line, Series};
+
+/// Where study.vox is, from the repository root; skipped when absent.
+const STUDY: &str = "../shared/scenes/vox/study.vox";
+
+/// The settings measured and the reference, per mode.
+pub struct Grid {
+    /// Image size.
+    pub size: (u32, u32),
+    /// Samples per pixel along one axis.
+    pub spp: &'static [u16],
+    /// Bounces (diffuse and specular alike, as `--bounces N`) along the other.
+    pub bounces: &'static [u8],
+    /// The reference's samples per pixel (at the most bounces).
+    pub reference_spp: u16,
+}
+
+/// The README's grid: 320x180, reference 256 spp at 8 bounces (about two
+/// minutes per scene on two cores).
+pub const GRID: Grid = Grid {
+    size: (320, 180),
+    spp: &[1, 4, 16],
+    bounces: &[1, 2, 4, 8],
+    reference_spp: 256,
+};
+
+/// A smoke run: 160x90, reference 32 spp.
+pub const QUICK: Grid = Grid {
+    size: (160, 90),
+    spp: &[1, 4],
+    bounces: &[1, 4],
+    reference_spp: 32,
+};
+
+/// One measured setting of one scene.
+pub struct Row {
+    spp: u16,
+    bounces: u8,
+    ms: f64,
+    rays: RayStats,
+    rmse: f64,
+}
+
+/// One scene's measurements.
+pub struct Measured {
+    name: String,
+    about: String,
+    reference_ms: f64,
+    rows: Vec<Row>,
+}
+
+/// Palette indices of the room.
+const WHITE: u8 = 1;
+const RED: u8 = 2;
+const GREEN: u8 = 3;
+const GLASS: u8 = 4;
+const MIRROR: u8 = 5;
+const LAMP: u8 = 6;
+const BLOCK: u8 = 7;
+
+/// The room: white floor, ceiling and back wall, a red and a green side
+/// wall, open at the front (toward +z) to a dim uniform sky; a lamp in
+/// the ceiling, a mirror on the right wall, a glass pane in front of a
+/// yellow block.
+fn room_voxel(p: IVec3) -> u8 {
+    let inside = |lo: i32, hi: i32, v: i32| (lo..=hi).contains(&v);
+    let (x, y, z) = (p.x, p.y, p.z);
+    if !(inside(-10, 10, x) && inside(-8, 8, y) && inside(-10, 10, z)) {
+        return 0;
+    }
+    if y == 8 && inside(-2, 1, x) && inside(-3, 0, z) {
+        LAMP
+    } else if x == 9 && inside(-6, 4, y) && inside(-8, -2, z) {
+        MIRROR
+    } else if z == 2 && inside(-7, -1, x) && inside(-7, -1, y) {
+        GLASS
+    } else if inside(-6, -3, x) && inside(-7, -4, y) && inside(-4, -1, z) {
+        BLOCK
+    } else if x == -10 {
+        RED
+    } else if x == 10 {
+        GREEN
+    } else if y == -8 || y == 8 || z == -10 {
+        WHITE
+    } else {
+        0
+    }
+}
+
+/// Renders `scene` at every setting of `grid` and against its reference.
+fn measure<S: Scene + Sync>(
+    name: &str,
+    about: String,
+    scene: &S,
+    camera: &Camera,
+    base: &RenderOptions,
+    grid: &Grid,
+    runs: usize,
+) -> Result<Measured, String> {
+    let (width, height) = grid.size;
+    let frame = Framebuffer::new(width, height).map_err(|e| e.to_string())?;
+    let with = |spp: u16, bounces: u8| RenderOptions {
+        samples: spp,
+        lighting: Lighting {
+            bounces: Bounces {
+                diffuse: bounces,
+                specular: bounces,
+            },
+            path_trace: true,
+            ..base.lighting
+        },
+        ..*base
+    };
+    let render = |options: &RenderOptions| {
+        let started = Instant::now();
+        render_parallel(scene, camera, options, Rect::full(camera), &frame)
+            .map(|rays| (started.elapsed(), rays))
+            .map_err(|e| e.to_string())
+    };
+    let most = grid.bounces.iter().copied().max().unwrap_or(1);
+    eprintln!(
+        "{name}: reference {} spp x {most} bounces, {width}x{height}",
+        grid.reference_spp
+    );
+    let (elapsed, _) = render(&with(grid.reference_spp, most))?;
+    let reference = frame.to_vec();
+    let mut rows = Vec::new();
+    for &bounces in grid.bounces {
+        for &spp in grid.spp {
+            let mut rays = RayStats::default();
+            let ms = median_of(runs, || {
+                let (elapsed, counted) = render(&with(spp, bounces))?;
+                rays = counted;
+                Ok(elapsed)
+            })?;
+            let rmse = rmse(&frame.to_vec(), &reference);
+            eprintln!(
+                "{name} spp {spp} bounces {bounces}: {} rmse {rmse:.3}",
+                format_ms(ms)
+            );
+            rows.push(Row {
+                spp,
+                bounces,
+                ms,
+                rays,
+                rmse,
+            });
+        }
+    }
+    Ok(Measured {
+        name: name.to_string(),
+        about,
+        reference_ms: elapsed.as_secs_f64() * 1e3,
+        rows,
+    })
+}
+
+/// The room and, when present, study.vox, measured on `grid`.
+pub fn measure_all(grid: &Grid, runs: usize) -> Result<Vec<Measured>, String> {
+    let (width, height) = grid.size;
+    let base_camera = CameraSettings {
+        width,
+        height,
+        ..CameraSettings::default()
+    };
+    let mut out = Vec::new();
+
+    let colors = [
+        U8Vec3::splat(220),
+        U8Vec3::new(200, 40, 40),
+        U8Vec3::new(40, 180, 60),
+        U8Vec3::new(170, 220, 255),
+        U8Vec3::splat(230),
+        U8Vec3::new(255, 240, 200),
+        U8Vec3::new(230, 190, 40),
+    ];
+    let source = FnSource::new(Palette::new(&colors), room_voxel);
+    let mut materials = Materials::all_diffuse();
+    let bad = |e: voxtrace::Error| e.to_string();
+    materials.set(GLASS, Material::glass(0.9, 1.5, 0.0).map_err(bad)?);
+    materials.set(MIRROR, Material::metal(1.0, 0.05).map_err(bad)?);
+    materials.set(LAMP, Material::emissive(4.0).map_err(bad)?);
+    let storage = OctreeScene::build(&source, IAabb::centered(12)).map_err(|e| e.to_string())?;
+    let lamps: Vec<IVec3> = IAabb::centered(12)
+        .iter()
+        .filter(|&p| room_voxel(p) == LAMP)
+        .collect();
+    let room = WithMaterials::new(&storage, &materials, &lamps);
+    let camera = Camera::new(CameraSettings {
+        lookfrom: Vec3::new(3.0, 1.0, 30.0),
+        lookat: Vec3::new(0.0, -1.0, 0.0),
+        vertical_fov: 50.0,
+        ..base_camera
+    })
+    .map_err(|e| e.to_string())?;
+    let options = RenderOptions {
+        sun: None,
+        lighting: Lighting {
+            sky: Some(Vec3::splat(0.25)),
+            ..Lighting::DEFAULT
+        },
+        ..RenderOptions::default()
+    };
+    let about = "a 21x17x21 voxel room the report builds: a glass pane (ior 1.5), a mirror \
+                 (metal, roughness 0.05), a lamp of 16 emissive voxels (radiance 4), open to \
+                 a uniform sky of 0.25, no sun; camera outside the open side"
+        .to_string();
+    out.push(measure(
+        "room", about, &room, &camera, &options, grid, runs,
+    )?);
+
+    if !Path::new(STUDY).exists() {
+        eprintln!("note: {STUDY} is absent: the material section measures the room only");
+        return Ok(out);
+    }
+    let model = VoxModel::load(Path::new(STUDY)).map_err(|e| format!("{STUDY}: {e}"))?;
+    let storage =
+        OctreeScene::build(&model, model.bounds()).map_err(|e| format!("{STUDY}: {e}"))?;
+    let study = WithMaterials::new(&storage, model.materials(), model.emitters());
+    let orbit = Orbit {
+        yaw: 200.0,
+        pitch: 30.0,
+        distance: None,
+    };
+    let camera = Camera::new(fit(base_camera, orbit.direction(), Boxes::Model(&model))?)
+        .map_err(|e| e.to_string())?;
+    // The file's light, as the CLI reads it.
+    let settings = model.settings();
+    let mut lighting = Lighting::DEFAULT;
+    if let Some(sun) = settings.sun {
+        lighting.sun_intensity = sun.intensity;
+        lighting.sun_radius = sun.radius;
+    }
+    lighting.sky = settings.sky.or(lighting.sky);
+    let options = RenderOptions {
+        sun: Some(settings.sun.map_or(voxtrace::DEFAULT_SUN, |s| s.direction)),
+        lighting,
+        ..RenderOptions::default()
+    };
+    let about = format!(
+        "study.vox ({STUDY}) with its materials ({} emissive voxels), sun and sky, from \
+         the orbit 200,30 framed to fit (the README's camera)",
+        model.emitters().len()
+    );
+    out.push(measure(
+        "study.vox",
+        about,
+        &study,
+        &camera,
+        &options,
+        grid,
+        runs,
+    )?);
+    Ok(out)
+}
+
+/// The markdown of the section.
+pub fn section(measured: &[Measured], grid: &Grid, runs: usize) -> String {
+    let (width, height) = grid.size;
+    let most = grid.bounces.iter().copied().max().unwrap_or(1);
+    let mut md = String::new();
+    let _ = writeln!(
+        md,
+        "\n### Materials: samples per pixel x bounces\n\n\
+         Path-traced frames at {width}x{height}, median of {} per setting; \
+         bounces N as `--bounces N` (diffuse and specular alike). Error against a \
+         reference of {} samples per pixel at {most} bounces, which is itself noisy: \
+         its own error floors the figures at about the last rows' size.\n",
+        count_of(runs, "run"),
+        grid.reference_spp
+    );
+    if !measured.iter().any(|m| m.name == "study.vox") {
+        let _ = writeln!(
+            md,
+            "(study.vox was absent: `{STUDY}`; only the room is measured.)\n"
+        );
+    }
+    for m in measured {
+        let _ = writeln!(
+            md,
+            "**{}**: {}. Reference: {}.\n\n\
+             | spp | bounces | time | primary rays | reflection rays | refraction rays | light rays | RMSE | PSNR |\n\
+             |---|---|---|---|---|---|---|---|---|",
+            m.name,
+            m.about,
+            format_ms(m.reference_ms)
+        );
+        for r in &m.rows {
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {} | {} | {} | {} | {:.2} | {:.1} dB |",
+                r.spp,
+                r.bounces,
+                format_ms(r.ms),
+                r.rays.primary_rays,
+                r.rays.reflection_rays,
+                r.rays.refraction_rays,
+                r.rays.light_rays,
+                r.rmse,
+                psnr(r.rmse)
+            );
+        }
+        md.push('\n');
+    }
+    md
+}
+
+/// Error against time: one line per scene and bounce count, along spp.
+pub fn chart(measured: &[Measured], grid: &Grid) -> Chart {
+    let (width, height) = grid.size;
+    let mut series = Vec::new();
+    for (scene, m) in measured.iter().enumerate() {
+        for (i, &bounces) in grid.bounces.iter().enumerate() {
+            let points = m
+                .rows
+                .iter()
+                .filter(|r| r.bounces == bounces && r.rmse > 0.0)
+                .map(|r| (r.ms, r.rmse))
+                .collect();
+            series.push(Series {
+                name: format!("{} {bounces} bounces", m.name),
+                points,
+                // A color per bounce count; the room thick, study.vox thin.
+                color: i,
+                line: if scene == 0 { Line::Thick } else { Line::Thin },
+            });
+        }
+    }
+    Chart {
+        title: format!("Path-traced error against time, spp x bounces, {width}x{height}"),
+        x_label: "ms per frame (median)".to_string(),
+        y_label: "RMSE against the reference (0-255)".to_string(),
+        series,
+        legend: SeriesLabelPosition::UpperRight,
+    }
+}

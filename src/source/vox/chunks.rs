@@ -1,0 +1,88 @@
+//! The small reader of a `.vox` file's chunk stream that the rOBJ and rCAM
+//! chunks need (dot_vox skips both): the chunks among MAIN's children with
+//! a given id, MagicaVoxel's DICT, and numbers separated by spaces. Every
+//! read is bounds-checked: malformed bytes give `None` or nothing, never a
+//! panic or an allocation larger than the input.
+
+use std::collections::HashMap;
+use std::string::String;
+use std::vec::Vec;
+
+/// A little-endian `u32` at `at`, if the bytes are there.
+pub(crate) fn u32_at(bytes: &[u8], at: usize) -> Option<u32> {
+    let b = bytes.get(at..at.checked_add(4)?)?;
+    Some(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+}
+
+/// A MagicaVoxel DICT (count, then length-prefixed key and value strings).
+pub(crate) fn dict(bytes: &[u8]) -> Option<HashMap<String, String>> {
+    let count = u32_at(bytes, 0)? as usize;
+    let mut at = 4;
+    let mut out = HashMap::new();
+    let text = |at: &mut usize| -> Option<String> {
+        let len = u32_at(bytes, *at)? as usize;
+        let start = at.checked_add(4)?;
+        let s = bytes.get(start..start.checked_add(len)?)?;
+        *at = start + len;
+        Some(String::from_utf8_lossy(s).into_owned())
+    };
+    // Each pair takes at least 8 bytes: a count past that is malformed.
+    if count > bytes.len() / 8 {
+        return None;
+    }
+    for _ in 0..count {
+        let key = text(&mut at)?;
+        let value = text(&mut at)?;
+        out.insert(key, value);
+    }
+    Some(out)
+}
+
+/// The contents of every chunk with `id` among MAIN's children, in file
+/// order; a chunk whose size runs past the file ends the scan.
+pub(crate) fn chunks<'a>(bytes: &'a [u8], id: &[u8; 4]) -> Vec<&'a [u8]> {
+    let mut out = Vec::new();
+    // "VOX ", version, then MAIN: id, content size, children size.
+    if bytes.get(..4) != Some(b"VOX ") || bytes.get(8..12) != Some(b"MAIN") {
+        return out;
+    }
+    let Some(content) = u32_at(bytes, 12) else {
+        return out;
+    };
+    let mut at = 20usize.saturating_add(content as usize);
+    while let (Some(chunk_id), Some(size), Some(children)) = (
+        at.checked_add(4).and_then(|end| bytes.get(at..end)),
+        u32_at(bytes, at.saturating_add(4)),
+        u32_at(bytes, at.saturating_add(8)),
+    ) {
+        let start = at + 12;
+        let Some(end) = start.checked_add(size as usize) else {
+            break;
+        };
+        if chunk_id == id {
+            match bytes.get(start..end) {
+                Some(content) => out.push(content),
+                None => break,
+            }
+        }
+        let Some(next) = end.checked_add(children as usize) else {
+            break;
+        };
+        at = next;
+    }
+    out
+}
+
+/// `N` finite numbers separated by spaces, or `None`.
+pub(crate) fn numbers<const N: usize>(text: Option<&String>) -> Option<[f32; N]> {
+    let mut out = [0.0; N];
+    let mut parts = text?.split_whitespace();
+    for slot in &mut out {
+        *slot = parts
+            .next()?
+            .parse::<f32>()
+            .ok()
+            .filter(|v| v.is_finite())?;
+    }
+    Some(out)
+}

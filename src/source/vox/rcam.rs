@@ -1,0 +1,408 @@
+//! The cameras of a `.vox` file: its rCAM chunks (dot_vox skips them),
+//! read with the chunk reader rOBJ uses (`chunks.rs`).
+//!
+//! An rCAM chunk is a camera id and a DICT. Keys read, with their meaning
+//! as the MagicaVoxel format notes and the opengametools reader
+//! (`ogt_vox.h`, `ogt_vox_cam`) describe them: `_mode` (`pers`, `free`,
+//! `pano`, `orth`, `iso`), `_focus` (the target point, three numbers in
+//! MagicaVoxel's z-up world), `_angle` (pitch, yaw, roll in degrees),
+//! `_radius` (the camera's distance from the target), `_frustum` (the
+//! near plane's half height per unit distance: `tan(fov / 2)` for a
+//! perspective camera) and `_fov` (the vertical field of view in degrees).
+//! A key that is absent takes MagicaVoxel's default (focus and angles 0,
+//! radius 0, frustum 0.414214, fov 45); a value that is not numbers, or out
+//! of range (a negative radius, a field of view outside (0, 180)), is a
+//! warning and the default.
+//!
+//! MagicaVoxel does not document which way a camera with zero angles
+//! looks; voxtrace's reading (not checked against MagicaVoxel's own
+//! renders) is: along MagicaVoxel's +y with +z up and +x to the right (the
+//! model's front view); pitch turns the view down toward -z, yaw turns it
+//! about +z counter-clockwise seen from above (from +y toward -x), roll
+//! turns the image's top toward its right.
+
+use std::format;
+use std::string::String;
+use std::vec::Vec;
+
+use glam::Vec3;
+
+use crate::source::vox::chunks::{chunks, dict, numbers, u32_at};
+
+/// What `_mode` a camera has (an absent or unknown mode is perspective).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VoxCameraMode {
+    /// `pers`: a perspective camera orbiting its target.
+    Perspective,
+    /// `free`: a perspective camera moved freely (rendered as perspective).
+    Free,
+    /// `orth`: parallel rays.
+    Orthographic,
+    /// `iso`: parallel rays, at the file's angles.
+    Isometric,
+    /// `pano`: a panorama, which voxtrace does not render.
+    Panorama,
+}
+
+impl VoxCameraMode {
+    /// Whether the camera's rays are parallel.
+    #[must_use]
+    pub fn is_orthographic(self) -> bool {
+        matches!(self, VoxCameraMode::Orthographic | VoxCameraMode::Isometric)
+    }
+}
+
+/// One rCAM camera, its target in voxtrace's axes (y up).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VoxCamera {
+    /// The camera id the file gives it.
+    pub id: u32,
+    /// Its projection.
+    pub mode: VoxCameraMode,
+    /// The target point, in voxtrace's axes (MagicaVoxel's (x, y, z) is
+    /// voxtrace's (x, z, -y), as for voxels).
+    pub focus: Vec3,
+    /// Pitch, yaw and roll in degrees, as the file gives them.
+    pub angle: [f32; 3],
+    /// Distance from the target to the camera, at least 0.
+    pub radius: f32,
+    /// The near plane's half height per unit distance.
+    pub frustum: f32,
+    /// Vertical field of view in degrees.
+    pub fov: f32,
+}
+
+/// MagicaVoxel (x, y, z) z-up is voxtrace (x, z, -y).
+fn y_up(v: Vec3) -> Vec3 {
+    Vec3::new(v.x, v.z, -v.y)
+}
+
+impl VoxCamera {
+    /// The view direction and the image's up direction, unit vectors in
+    /// voxtrace's axes (the module's doc gives the convention).
+    #[must_use]
+    pub fn orientation(&self) -> (Vec3, Vec3) {
+        let [pitch, yaw, roll] = self.angle.map(f32::to_radians);
+        let (sp, cp) = (libm::sinf(pitch), libm::cosf(pitch));
+        let (sy, cy) = (libm::sinf(yaw), libm::cosf(yaw));
+        let (sr, cr) = (libm::sinf(roll), libm::cosf(roll));
+        // In MagicaVoxel's axes: forward and up at this pitch and yaw,
+        // perpendicular by construction (up is forward pitched by 90).
+        let forward = Vec3::new(-sy * cp, cy * cp, -sp);
+        let up = Vec3::new(-sy * sp, cy * sp, cp);
+        let right = forward.cross(up);
+        let up = up * cr + right * sr;
+        (y_up(forward), y_up(up))
+    }
+
+    /// Where the camera is: `radius` back from the target along the view.
+    #[must_use]
+    pub fn position(&self) -> Vec3 {
+        self.focus - self.orientation().0 * self.radius
+    }
+
+    /// A point the camera looks at: the target, or one voxel ahead of a
+    /// camera that sits on its target (radius 0).
+    #[must_use]
+    pub fn lookat(&self) -> Vec3 {
+        if self.radius > 0.0 {
+            self.focus
+        } else {
+            self.position() + self.orientation().0
+        }
+    }
+
+    /// The height in voxels an orthographic image of this camera spans:
+    /// the height of its perspective frustum at the target,
+    /// `2 * frustum * radius` (voxtrace's reading of "radius also sets the
+    /// orthographic frustum").
+    #[must_use]
+    pub fn ortho_height(&self) -> f32 {
+        2.0 * self.frustum * self.radius
+    }
+}
+
+/// One camera from an rCAM chunk's bytes, with a warning per value that is
+/// not usable; `None` for a chunk too short or malformed to hold one.
+fn camera(content: &[u8], warnings: &mut Vec<String>) -> Option<VoxCamera> {
+    let id = u32_at(content, 0)?;
+    let d = dict(content.get(4..)?)?;
+    let mut warn = |key: &str, why: &str, default: &str| {
+        let value = d.get(key).map_or("", String::as_str);
+        // Keep the warning one line, however odd the value's bytes.
+        let value: String = value.chars().take(40).filter(|c| !c.is_control()).collect();
+        warnings.push(format!(
+            "camera {id}: {key} '{value}' {why}; using {default}"
+        ));
+    };
+    let mode = match d.get("_mode").map(String::as_str) {
+        Some("pers") => VoxCameraMode::Perspective,
+        Some("free") => VoxCameraMode::Free,
+        Some("orth") => VoxCameraMode::Orthographic,
+        Some("iso") => VoxCameraMode::Isometric,
+        Some("pano") => VoxCameraMode::Panorama,
+        Some(_) => {
+            warn(
+                "_mode",
+                "is not pers, free, orth, iso or pano",
+                "perspective",
+            );
+            VoxCameraMode::Perspective
+        }
+        None => VoxCameraMode::Perspective,
+    };
+    let mut read = |key: &str, default: &[f32], why: &str, ok: &dyn Fn(&[f32]) -> bool| {
+        let mut out = [0.0f32; 3];
+        let n = default.len();
+        out[..n].copy_from_slice(default);
+        if d.contains_key(key) {
+            let parsed = match n {
+                1 => numbers::<1>(d.get(key)).map(|[a]| [a, 0.0, 0.0]),
+                _ => numbers::<3>(d.get(key)),
+            };
+            match parsed.filter(|v| ok(&v[..n])) {
+                Some(v) => out = v,
+                None => {
+                    let text: Vec<String> = default.iter().map(|v| format!("{v}")).collect();
+                    warn(key, why, &text.join(" "));
+                }
+            }
+        }
+        out
+    };
+    let any = |_: &[f32]| true;
+    let focus = read("_focus", &[0.0; 3], "is not three numbers", &any);
+    let angle = read("_angle", &[0.0; 3], "is not three numbers", &any);
+    let positive = |v: &[f32]| v[0] >= 0.0;
+    let radius = read(
+        "_radius",
+        &[0.0],
+        "is not a number of at least 0",
+        &positive,
+    )[0];
+    let frustum = |v: &[f32]| v[0] > 0.0;
+    let frustum = read(
+        "_frustum",
+        &[0.414_214],
+        "is not a positive number",
+        &frustum,
+    )[0];
+    let fov = |v: &[f32]| v[0] > 0.0 && v[0] < 180.0;
+    let fov = read(
+        "_fov",
+        &[45.0],
+        "is not a number of degrees in (0, 180)",
+        &fov,
+    )[0];
+    Some(VoxCamera {
+        id,
+        mode,
+        focus: y_up(Vec3::from(focus)),
+        angle,
+        radius,
+        frustum,
+        fov,
+    })
+}
+
+/// The most warning lines the cameras add: a hostile file can hold a
+/// camera every 20 bytes, MagicaVoxel files hold 10.
+const MAX_WARNINGS: usize = 16;
+
+/// The cameras of the file in `bytes`, by id (the first of a repeated
+/// id), with one warning line per value not used as it is (at most
+/// [`MAX_WARNINGS`], then one line counting the rest).
+pub(crate) fn cameras(bytes: &[u8], warnings: &mut Vec<String>) -> Vec<VoxCamera> {
+    let mut mine = Vec::new();
+    let mut out: Vec<VoxCamera> = chunks(bytes, b"rCAM")
+        .into_iter()
+        .filter_map(|content| camera(content, &mut mine))
+        .collect();
+    // Stable: the first camera of each id stays first, and dedup keeps it.
+    out.sort_by_key(|c| c.id);
+    out.dedup_by_key(|c| c.id);
+    let more = mine.len().saturating_sub(MAX_WARNINGS);
+    mine.truncate(MAX_WARNINGS);
+    warnings.extend(mine);
+    if more > 0 {
+        warnings.push(format!("{more} more unusable rCAM values not listed"));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::vec;
+
+    /// A file of MAIN holding one rCAM chunk per `(id, pairs)`.
+    fn file(cams: &[(u32, &[(&str, &str)])]) -> Vec<u8> {
+        let mut children = Vec::new();
+        for (id, pairs) in cams {
+            let mut d = id.to_le_bytes().to_vec();
+            d.extend_from_slice(&(pairs.len() as u32).to_le_bytes());
+            for (k, v) in *pairs {
+                for s in [k, v] {
+                    d.extend_from_slice(&(s.len() as u32).to_le_bytes());
+                    d.extend_from_slice(s.as_bytes());
+                }
+            }
+            children.extend_from_slice(b"rCAM");
+            children.extend_from_slice(&(d.len() as u32).to_le_bytes());
+            children.extend_from_slice(&0u32.to_le_bytes());
+            children.extend_from_slice(&d);
+        }
+        let mut out = b"VOX ".to_vec();
+        out.extend_from_slice(&150u32.to_le_bytes());
+        out.extend_from_slice(b"MAIN");
+        out.extend_from_slice(&0u32.to_le_bytes());
+        out.extend_from_slice(&(children.len() as u32).to_le_bytes());
+        out.extend_from_slice(&children);
+        out
+    }
+
+    fn near(a: Vec3, b: Vec3) -> bool {
+        (a - b).length() < 1e-5
+    }
+
+    #[test]
+    fn reads_every_key_in_voxtrace_axes() {
+        let mut w = Vec::new();
+        let cams = cameras(
+            &file(&[
+                (
+                    3,
+                    &[
+                        ("_mode", "orth"),
+                        ("_focus", "1 2 3"),
+                        ("_angle", "10 20 30"),
+                        ("_radius", "40"),
+                        ("_frustum", "0.5"),
+                        ("_fov", "60"),
+                    ],
+                ),
+                (1, &[("_mode", "pers")]),
+            ]),
+            &mut w,
+        );
+        assert!(w.is_empty(), "{w:?}");
+        // Sorted by id; absent keys take MagicaVoxel's defaults.
+        assert_eq!(cams.len(), 2);
+        assert_eq!(cams[0].id, 1);
+        assert_eq!(cams[0].mode, VoxCameraMode::Perspective);
+        assert_eq!((cams[0].radius, cams[0].fov), (0.0, 45.0));
+        let c = cams[1];
+        assert_eq!(c.mode, VoxCameraMode::Orthographic);
+        // MagicaVoxel (1, 2, 3) z-up is voxtrace (1, 3, -2).
+        assert_eq!(c.focus, Vec3::new(1.0, 3.0, -2.0));
+        assert_eq!(c.angle, [10.0, 20.0, 30.0]);
+        assert_eq!((c.radius, c.frustum, c.fov), (40.0, 0.5, 60.0));
+        assert_eq!(c.ortho_height(), 40.0);
+    }
+
+    #[test]
+    fn angles_turn_the_view_as_documented() {
+        let cam = |angle: [f32; 3]| VoxCamera {
+            id: 0,
+            mode: VoxCameraMode::Perspective,
+            focus: Vec3::new(5.0, 6.0, 7.0),
+            angle,
+            radius: 10.0,
+            frustum: 0.414_214,
+            fov: 45.0,
+        };
+        // Zero angles: along MagicaVoxel's +y (voxtrace -z), z up (y up).
+        let (f, u) = cam([0.0; 3]).orientation();
+        assert!(near(f, Vec3::NEG_Z) && near(u, Vec3::Y), "{f} {u}");
+        let c = cam([0.0; 3]);
+        assert!(near(c.position(), Vec3::new(5.0, 6.0, 17.0)));
+        assert_eq!(c.lookat(), c.focus);
+        // Pitch 90 looks straight down, the image's top toward the old view.
+        let (f, u) = cam([90.0, 0.0, 0.0]).orientation();
+        assert!(near(f, Vec3::NEG_Y) && near(u, Vec3::NEG_Z), "{f} {u}");
+        // Yaw 90 turns +y toward -x (counter-clockwise from above).
+        let (f, u) = cam([0.0, 90.0, 0.0]).orientation();
+        assert!(near(f, Vec3::NEG_X) && near(u, Vec3::Y), "{f} {u}");
+        // Roll 90 turns the image's top toward its right (+x).
+        let (f, u) = cam([0.0, 0.0, 90.0]).orientation();
+        assert!(near(f, Vec3::NEG_Z) && near(u, Vec3::X), "{f} {u}");
+        // Every orientation is orthonormal.
+        for a in [[33.0, 250.0, 12.0], [-170.0, 5.0, 359.0], [91.0, 0.0, 0.0]] {
+            let (f, u) = cam(a).orientation();
+            assert!((f.length() - 1.0).abs() < 1e-5 && (u.length() - 1.0).abs() < 1e-5);
+            assert!(f.dot(u).abs() < 1e-5);
+        }
+        // A camera on its target still looks somewhere.
+        let on = VoxCamera {
+            radius: 0.0,
+            ..cam([0.0; 3])
+        };
+        assert_eq!(on.position(), on.focus);
+        assert!(near(on.lookat() - on.position(), Vec3::NEG_Z));
+    }
+
+    #[test]
+    fn bad_values_warn_naming_the_camera_and_key() {
+        let mut w = Vec::new();
+        let cams = cameras(
+            &file(&[(
+                7,
+                &[
+                    ("_mode", "warp"),
+                    ("_focus", "1 x 3"),
+                    ("_radius", "-4"),
+                    ("_fov", "200"),
+                    ("_frustum", "nan"),
+                ],
+            )]),
+            &mut w,
+        );
+        assert_eq!(cams.len(), 1);
+        assert_eq!(w.len(), 5, "{w:?}");
+        for (line, key) in w
+            .iter()
+            .zip(["_mode", "_focus", "_radius", "_frustum", "_fov"])
+        {
+            assert!(
+                line.starts_with("camera 7: ") && line.contains(key),
+                "{line}"
+            );
+            assert!(!line.contains('\n'));
+        }
+        let c = cams[0];
+        assert_eq!(
+            (c.focus, c.radius, c.frustum, c.fov),
+            (Vec3::ZERO, 0.0, 0.414_214, 45.0)
+        );
+    }
+
+    #[test]
+    fn a_repeated_id_keeps_the_first_and_many_warnings_are_counted() {
+        let bad: &[(&str, &str)] = &[("_fov", "0")];
+        let mut cams: Vec<(u32, &[(&str, &str)])> =
+            vec![(5, &[("_fov", "30")]), (5, &[("_fov", "60")])];
+        cams.extend((100..140).map(|id| (id, bad)));
+        let mut w = Vec::new();
+        let found = cameras(&file(&cams), &mut w);
+        assert_eq!(found.len(), 41);
+        assert_eq!((found[0].id, found[0].fov), (5, 30.0));
+        assert_eq!(w.len(), MAX_WARNINGS + 1, "{w:?}");
+        assert_eq!(w[MAX_WARNINGS], "24 more unusable rCAM values not listed");
+    }
+
+    #[test]
+    fn garbage_gives_no_cameras_and_no_panic() {
+        let mut w = Vec::new();
+        assert!(cameras(b"VOX ", &mut w).is_empty());
+        let mut f = file(&[(0, &[("_mode", "pers")])]);
+        f.truncate(f.len() - 2);
+        assert!(cameras(&f, &mut w).is_empty());
+        // An id with no dictionary after it.
+        let mut short = file(&[]);
+        short.extend_from_slice(b"rCAM\x02\0\0\0\0\0\0\0\x01\0");
+        let n = short.len() as u32 - 20;
+        short[16..20].copy_from_slice(&n.to_le_bytes());
+        assert!(cameras(&short, &mut w).is_empty());
+        assert!(w.is_empty());
+    }
+}
