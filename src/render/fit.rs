@@ -127,7 +127,13 @@ impl Framer {
                 // back one holds all four.
                 let depth_h = -(r + l) / (2.0 * self.tan_h);
                 let depth_v = -(t + b) / (2.0 * self.tan_v);
-                let depth = depth_h.min(depth_v).min(near - 0.5);
+                // Boxes inside all four side planes lie in front of the
+                // apex already; the clearance only keeps rounding from
+                // putting the camera on the nearest face. (A fixed half
+                // voxel shrank small boxes seen through wide fields of view
+                // to half the frame.)
+                let clearance = 1e-3 * (b_max + b_min_neg).max(1.0);
+                let depth = depth_h.min(depth_v).min(near - clearance);
                 ((r - l) / 2.0, (t - b) / 2.0, depth, Projection::Perspective)
             }
             Projection::Orthographic { .. } => {
