@@ -1,20 +1,14 @@
 //! End-to-end tests of the `voxtrace` binary: it writes valid PNGs, both
 //! backends write identical files, and bad input exits 2 with one line.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn voxtrace(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_voxtrace"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+use std::path::{Path, PathBuf};
+
+use common::run::{scratch_in, voxtrace};
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli");
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+    scratch_in("cli", name)
 }
 
 /// Decodes a PNG into (width, height, RGBA bytes).

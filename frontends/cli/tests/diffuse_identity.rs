@@ -8,8 +8,12 @@
 //! directly instead. Skipped with a notice when
 //! `../shared/scenes/vox` is absent.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
+
+use common::run::scratch_in;
 
 /// Each file, its camera, and the FNV-1a hash of the RGBA pixels b8c9a6d
 /// wrote for the default look and for `--shadows --ao 4 --spp 2 --fog`.
@@ -43,9 +47,7 @@ const FILES: [(&str, &str, &str, [u64; 2]); 4] = [
 const LOOKS: [&[&str]; 2] = [&[], &["--shadows", "--ao", "4", "--spp", "2", "--fog"]];
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("diffuse_identity");
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+    scratch_in("diffuse_identity", name)
 }
 
 /// The RGBA pixels `binary` writes for `file` with `camera` and `look`.

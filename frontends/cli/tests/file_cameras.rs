@@ -6,26 +6,13 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::PathBuf;
 
+use common::run::{scratch_in, stderr, voxtrace};
 use common::vox_bytes::{chunk, dict, file, model};
 
-fn voxtrace(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_voxtrace"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("file_cameras");
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
+    scratch_in("file_cameras", name)
 }
 
 const RED: [u8; 4] = [255, 0, 0, 255];

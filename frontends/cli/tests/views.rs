@@ -3,29 +3,18 @@
 //! frame ranges, transparent backgrounds, standard output, the sample
 //! model's round trip, and one-line errors that keep their hints.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
+use std::path::{Path, PathBuf};
+
+use common::run::{scratch_in, stderr, voxtrace};
 use voxtrace::{
     render, unpack, Camera, CameraSettings, OctreeScene, RenderOptions, VoxModel, VoxelGenerator,
 };
 use voxtrace_cli::{export_vox, terrain_box};
 
-fn voxtrace(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_voxtrace"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("views");
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
+    scratch_in("views", name)
 }
 
 /// Runs a render of the small terrain with `extra` flags into `name`;
