@@ -66,7 +66,8 @@ pub(crate) const MEMORY_PATH: usize = 32;
 /// What a storage keeps between the walks of coherent rays (the pixels of
 /// a tile, the occlusion rays of neighbouring hits) so that a ray can begin
 /// where the previous one already knows its way: for the octree, the path
-/// of nodes down to where the last walk ended.
+/// of nodes down to where the last walk ended, and what the last start
+/// cell looked up held (rays from one origin start in one cell).
 ///
 /// # Guarantees
 /// A memory only ever changes where a walk begins its work, never what it
