@@ -2,8 +2,12 @@
 //! parts that `voxtrace stitch` assembles into the very file a single render
 //! writes, and every refusal is exit 2 with one line naming the problem.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+
+use common::run::{scratch_in, stderr};
 
 fn voxtrace(args: &[&str], env: &[(&str, &str)]) -> Output {
     let mut command = Command::new(env!("CARGO_BIN_EXE_voxtrace"));
@@ -16,16 +20,10 @@ fn voxtrace(args: &[&str], env: &[(&str, &str)]) -> Output {
 
 /// A fresh empty directory for one test.
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("farm")
-        .join(name);
+    let dir = scratch_in("farm", name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
 fn ok(out: &Output) {
