@@ -15,8 +15,11 @@ pub(crate) struct Lanes {
     /// The start cell, as floats: exact below 2^24, and a saturated cell of
     /// a huge origin keeps its order against every plane of a volume.
     start: Vec3A,
-    up: BVec3A,
-    down: BVec3A,
+    /// The walk's steps as floats: +1, -1, or 0 on an axis it does not
+    /// move along.
+    pub(crate) step: Vec3A,
+    pub(crate) up: BVec3A,
+    pub(crate) down: BVec3A,
     moving: BVec3A,
 }
 
@@ -29,6 +32,7 @@ impl Lanes {
             origin,
             inv_dir,
             start: start.as_vec3a(),
+            step,
             up: step.cmpgt(Vec3A::ZERO),
             down: step.cmplt(Vec3A::ZERO),
             moving: step.cmpne(Vec3A::ZERO),
@@ -64,14 +68,14 @@ impl Lanes {
 
     /// For each axis, whether the cell the walk is in just after crossing
     /// `key` lies at or above that axis' lane of `planes` (exact floats), as
-    /// three bits `x | y << 1 | z << 2`, for planes strictly inside a box
+    /// a lane mask, for planes strictly inside a box
     /// the walk entered at `key` (never the plane of `key` itself). Planes
     /// behind the start are decided by the start cell, as the start rule
     /// says; planes ahead are crossed when their key comes strictly first.
     /// (A plane of `key`'s own axis with an equal key lies beyond the entry
     /// plane: single steps reach it only after entering.)
     #[inline]
-    pub(crate) fn upper_sides(&self, planes: Vec3A, key: Key) -> u32 {
+    pub(crate) fn upper_sides(&self, planes: Vec3A, key: Key) -> BVec3A {
         let t = (planes - self.origin) * self.inv_dir;
         let kt = Vec3A::splat(key.t);
         let lane = Vec3A::new(0.0, 1.0, 2.0).cmplt(Vec3A::splat(f32::from(key.axis)));
@@ -79,6 +83,6 @@ impl Lanes {
         let behind_start = planes.cmple(self.start);
         // Moving up: above once crossed; moving down: above until crossed;
         // not moving: where the start is.
-        ((behind_start & !(self.down & crossed)) | (self.up & crossed)).bitmask()
+        (behind_start & !(self.down & crossed)) | (self.up & crossed)
     }
 }

@@ -14,7 +14,7 @@
 //! restarts from the deepest node whose cube still holds the position (the
 //! highest coordinate bit the move changed says which), not from the root.
 
-use glam::IVec3;
+use glam::{IVec3, Vec3A};
 
 use crate::frustum::Frustum;
 use crate::geom::{IAabb, Ray, MAX_COORD};
@@ -168,83 +168,91 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         };
         let lanes = Lanes::of(&walk);
         let min = self.bounds.min;
+        let min_f = min.as_vec3a();
         let leaves_region = walk.exit_of(region.min, region.max);
-        // The region relative to the tree's corner.
-        let (region_lo, region_hi) = (region.min - min, region.max - min);
+        let (region_lo, region_hi) = (region.min.as_vec3a(), region.max.as_vec3a());
         let nodes = self.nodes.as_ref();
         let root_log = self.root_size.trailing_zeros();
         // The position: the ray is, at `key`, in the cube of side
-        // 2^known_log at `corner` (relative to `min`, where every cube of
-        // the tree starts at a multiple of its side).
+        // 2^known_log at `at`. Corners are kept in world coordinates as
+        // floats, which are exact: every corner and plane of the tree lies
+        // within 2^24 of the origin (`MAX_COORD` and the root's side).
         let mut key = walk.key();
-        let mut corner = walk.cell() - min;
+        let start = walk.cell();
+        let mut at = start.as_vec3a();
         let mut known_log = 0;
         let mut steps = 0;
         // path[d] (1 <= d <= depth): index of the node at depth d holding
         // the position, whose cube has side 2^(root_log - d); `node` is the
-        // one at `depth` itself. The descent begins where the memory knows
-        // the way.
-        let (mut depth, mut node) = self.recall(corner, memory);
+        // one at `depth` itself, its cube's corner `node_at`. The descent
+        // begins where the memory knows the way.
+        let (mut depth, mut node) = self.recall(start - min, memory);
+        let mut node_at = cube_at(at, min_f, root_log - depth as u32);
         let path = &mut memory.path;
         // Where the walk ends, for the next one: a position inside the node
         // at `depth` (whose path entries are all written).
         macro_rules! end {
             ($at:expr, $traced:expr) => {{
-                memory.corner = $at;
+                memory.corner = ($at - min_f).as_ivec3();
                 memory.depth = depth;
                 return $traced;
             }};
         }
         loop {
             // Down from `depth` to the deepest node holding the position;
-            // the empty cube found there has side 2^empty_log.
-            let empty_log = loop {
+            // the empty cube found there, its corner and log2 of its side.
+            let (cube, empty_log) = loop {
                 match node.0 {
                     NodeKind::Branch { children, first } => {
                         let half_log = root_log - depth as u32 - 1;
-                        refine(&lanes, key, min, &mut corner, &mut known_log, half_log);
-                        let upper = (corner >> half_log) & 1;
-                        let octant = (upper.x | upper.y << 1 | upper.z << 2) as u32;
+                        let (child, octant) =
+                            half_of(&lanes, key, node_at, half_log, &mut at, &mut known_log);
                         if children & (1 << octant) == 0 {
-                            break half_log;
+                            break (child, half_log);
                         }
                         let rank = child_rank(children, octant);
                         depth += 1;
                         let index = first + rank;
                         path[depth % PATH] = index;
                         node = nodes[index as usize];
+                        node_at = child;
                     }
                     NodeKind::Solid(material) => {
-                        refine(&lanes, key, min, &mut corner, &mut known_log, 0);
-                        end!(corner, self.hit(&walk, key, min + corner, material, steps));
+                        // The voxel the ray is in: the known cube, halved
+                        // down to side 1.
+                        while known_log > 0 {
+                            half_of(&lanes, key, at, known_log - 1, &mut at, &mut known_log);
+                        }
+                        end!(at, self.hit(&walk, key, at.as_ivec3(), material, steps));
                     }
                     NodeKind::Brick {
                         occupancy,
                         materials,
                     } => {
-                        refine(&lanes, key, min, &mut corner, &mut known_log, 1);
-                        if occupancy & GROUP << brick_bit(corner & 2) == 0 {
-                            break 1;
+                        let (group, upper) =
+                            half_of(&lanes, key, node_at, 1, &mut at, &mut known_log);
+                        let group_bit = spread(upper) << 1;
+                        if occupancy & GROUP << group_bit == 0 {
+                            break (group, 1);
                         }
-                        refine(&lanes, key, min, &mut corner, &mut known_log, 0);
-                        let bit = brick_bit(corner & 3);
+                        let (cell, upper) = half_of(&lanes, key, group, 0, &mut at, &mut known_log);
+                        let bit = group_bit | spread(upper);
                         if occupancy >> bit & 1 == 0 {
-                            break 0;
+                            break (cell, 0);
                         }
                         let material = self.brick_material(occupancy, materials, bit);
-                        end!(corner, self.hit(&walk, key, min + corner, material, steps));
+                        end!(cell, self.hit(&walk, key, cell.as_ivec3(), material, steps));
                     }
                 }
             };
             // Leave the empty cube through its first far-plane crossing.
-            let cube = corner >> empty_log << empty_log;
-            let side = 1 << empty_log;
-            let low = (min + cube).as_vec3a();
-            let exit = lanes.exit_of(low, low + side as f32);
+            let side = pow2(empty_log);
+            let exit = lanes.exit_of(cube, cube + side);
             steps += 1;
+            let low = cube.as_ivec3();
             let empty = IAabb {
-                min: min + cube,
-                max: min + cube + side,
+                min: low,
+                max: low + (1 << empty_log),
             };
             if !visit(empty) {
                 end!(cube, Traced { hit: None, steps });
@@ -255,44 +263,49 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                 end!(cube, Traced { hit: None, steps });
             }
             let axis = exit.axis as usize;
-            corner = cube;
-            corner[axis] += if walk.moves_up(axis) { side } else { -side };
+            let on_axis = AXES.cmpeq(Vec3A::splat(f32::from(exit.axis)));
+            let next = cube + Vec3A::select(on_axis, lanes.step * side, Vec3A::ZERO);
             // Left the region? On the region's own exit axis, by position
             // (the new cube lies wholly beyond it): far from the origin
             // several planes of one axis can share a key, and they are
             // still crossed in order. A cube straddling the region's face
             // is not left yet; its cells past the face are empty anyway.
-            let left = if usize::from(leaves_region.axis) == axis {
-                if walk.moves_up(axis) {
-                    corner[axis] >= region_hi[axis]
-                } else {
-                    corner[axis] + side <= region_lo[axis]
-                }
+            let left = if leaves_region.axis == exit.axis {
+                let beyond = (lanes.up & next.cmpge(region_hi))
+                    | (lanes.down & (next + side).cmple(region_lo));
+                beyond.bitmask() >> axis & 1 != 0
             } else {
                 leaves_region.lt(exit)
             };
             if left {
                 end!(cube, Traced { hit: None, steps });
             }
+            at = next;
             known_log = empty_log;
-            // The nodes whose cubes are wider than every changed bit still
-            // hold the new position.
-            let changed = (corner[axis] ^ cube[axis]) as u32;
+            key = exit;
+            // Most moves stay inside the node at `depth` (a brick's groups
+            // and voxels, a branch's children).
+            let node_side = Vec3A::splat(pow2(root_log - depth as u32));
+            if (next.cmpge(node_at) & next.cmplt(node_at + node_side)).all() {
+                continue;
+            }
+            // Else the nodes whose cubes are wider than every changed bit
+            // still hold the new position.
+            let from = (cube[axis] - min_f[axis]) as i32;
+            let to = (next[axis] - min_f[axis]) as i32;
+            let changed = (from ^ to) as u32;
             let changed_log = u32::BITS - changed.leading_zeros();
             // Both cubes are inside the root cube (the walk returned above
             // once it left the region, which the root covers), so they
             // differ only below its side.
             debug_assert!(changed_log <= root_log, "a step left the root cube");
-            let keep = root_log.saturating_sub(changed_log) as usize;
-            if keep < depth {
-                depth = keep;
-                node = if depth == 0 {
-                    self.root
-                } else {
-                    nodes[path[depth % PATH] as usize]
-                };
-            }
-            key = exit;
+            depth = root_log.saturating_sub(changed_log) as usize;
+            node = if depth == 0 {
+                self.root
+            } else {
+                nodes[path[depth % PATH] as usize]
+            };
+            node_at = cube_at(at, min_f, root_log - depth as u32);
         }
     }
 
@@ -316,23 +329,57 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     }
 }
 
-/// Narrows the position from a cube of side 2^known_log to the one of side
-/// 2^to_log holding the ray at `key`, halving once per level and deciding
-/// each axis' half by the side of the midplane the ray is on.
+/// Lane indices as floats, to turn an axis into a lane mask.
+const AXES: Vec3A = Vec3A::new(0.0, 1.0, 2.0);
+
+/// 2^log as an exact float, for `log` below 128.
 #[inline]
-fn refine(
+fn pow2(log: u32) -> f32 {
+    f32::from_bits((127 + log) << 23)
+}
+
+/// The corner of the cube of side 2^log of the tree's grid (whose cubes
+/// start at multiples of their side from `min`) that holds the corner
+/// `at`: exact, since scaling by a power of two and `floor` are.
+#[inline]
+fn cube_at(at: Vec3A, min: Vec3A, log: u32) -> Vec3A {
+    let side = pow2(log);
+    min + ((at - min) * (1.0 / side)).floor() * side
+}
+
+/// Which half of the cube at `corner` (side 2^(half_log + 1)) holds the
+/// position: its corner and octant (`x | y << 1 | z << 2`). A position
+/// known only to that cube (`known_log` above `half_log`) is narrowed to
+/// the half by the side of the midplanes the ray is on at `key`; a finer
+/// one already lies in one half.
+#[inline(always)]
+fn half_of(
     lanes: &Lanes,
     key: Key,
-    min: IVec3,
-    corner: &mut IVec3,
+    corner: Vec3A,
+    half_log: u32,
+    at: &mut Vec3A,
     known_log: &mut u32,
-    to_log: u32,
-) {
-    while *known_log > to_log {
-        *known_log -= 1;
-        let half = 1 << *known_log;
-        let planes = (min + *corner + half).as_vec3a();
-        let upper = lanes.upper_sides(planes, key) as i32;
-        *corner += IVec3::new(upper & 1, upper >> 1 & 1, upper >> 2) << *known_log;
+) -> (Vec3A, u32) {
+    let half = Vec3A::splat(pow2(half_log));
+    let planes = corner + half;
+    let narrow = *known_log > half_log;
+    let upper = if narrow {
+        lanes.upper_sides(planes, key)
+    } else {
+        at.cmpge(planes)
+    };
+    let child = corner + Vec3A::select(upper, half, Vec3A::ZERO);
+    if narrow {
+        *at = child;
+        *known_log = half_log;
     }
+    (child, upper.bitmask())
+}
+
+/// Octant bits `x | y << 1 | z << 2` spread to a brick's bit layout
+/// `x | y << 2 | z << 4`.
+#[inline]
+fn spread(octant: u32) -> u32 {
+    (octant & 1) | (octant & 2) << 1 | (octant & 4) << 2
 }
