@@ -170,6 +170,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let min = self.bounds.min;
         let min_f = min.as_vec3a();
         let leaves_region = walk.exit_of(region.min, region.max);
+        let stays_before = leaves_region.t.min(t_max);
         let (region_lo, region_hi) = (region.min.as_vec3a(), region.max.as_vec3a());
         let nodes = self.nodes.as_ref();
         let root_log = self.root_size.trailing_zeros();
@@ -257,28 +258,34 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             if !visit(empty) {
                 end!(cube, Traced { hit: None, steps });
             }
-            if exit.t == f32::INFINITY || exit.t > t_max {
-                // No plane of the cube is ever reached in f32, or the rest
-                // of the ray is beyond the caller's reach.
-                end!(cube, Traced { hit: None, steps });
-            }
             let axis = exit.axis as usize;
             let on_axis = AXES.cmpeq(Vec3A::splat(f32::from(exit.axis)));
             let next = cube + Vec3A::select(on_axis, lanes.step * side, Vec3A::ZERO);
-            // Left the region? On the region's own exit axis, by position
-            // (the new cube lies wholly beyond it): far from the origin
-            // several planes of one axis can share a key, and they are
-            // still crossed in order. A cube straddling the region's face
-            // is not left yet; its cells past the face are empty anyway.
-            let left = if leaves_region.axis == exit.axis {
-                let beyond = (lanes.up & next.cmpge(region_hi))
-                    | (lanes.down & (next + side).cmple(region_lo));
-                beyond.bitmask() >> axis & 1 != 0
-            } else {
-                leaves_region.lt(exit)
-            };
-            if left {
-                end!(cube, Traced { hit: None, steps });
+            // A crossing before both the caller's reach and the region's
+            // exit stays inside: on the exit's own axis too, since crossing
+            // times grow with the plane. Else the slower questions.
+            if !(exit.t < stays_before) {
+                if exit.t == f32::INFINITY || exit.t > t_max {
+                    // No plane of the cube is ever reached in f32, or the
+                    // rest of the ray is beyond the caller's reach.
+                    end!(cube, Traced { hit: None, steps });
+                }
+                // Left the region? On the region's own exit axis, by
+                // position (the new cube lies wholly beyond it): far from
+                // the origin several planes of one axis can share a key,
+                // and they are still crossed in order. A cube straddling
+                // the region's face is not left yet; its cells past the
+                // face are empty anyway.
+                let left = if leaves_region.axis == exit.axis {
+                    let beyond = (lanes.up & next.cmpge(region_hi))
+                        | (lanes.down & (next + side).cmple(region_lo));
+                    beyond.bitmask() >> axis & 1 != 0
+                } else {
+                    leaves_region.lt(exit)
+                };
+                if left {
+                    end!(cube, Traced { hit: None, steps });
+                }
             }
             at = next;
             known_log = empty_log;
@@ -343,8 +350,9 @@ fn pow2(log: u32) -> f32 {
 /// `at`: exact, since scaling by a power of two and `floor` are.
 #[inline]
 fn cube_at(at: Vec3A, min: Vec3A, log: u32) -> Vec3A {
-    let side = pow2(log);
-    min + ((at - min) * (1.0 / side)).floor() * side
+    // (2^-log from its bits: no division.)
+    let inverse = f32::from_bits((127 - log) << 23);
+    min + ((at - min) * inverse).floor() * pow2(log)
 }
 
 /// Which half of the cube at `corner` (side 2^(half_log + 1)) holds the
