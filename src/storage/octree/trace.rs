@@ -188,13 +188,14 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         // one at `depth` itself, its cube's corner `node_at`. The descent
         // begins where the memory knows the way.
         let (mut depth, mut node) = self.recall(start - min, memory);
-        let mut node_at = cube_at(at, min_f, root_log - depth as u32);
+        let node_log = root_log - depth as u32;
+        let mut node_at = (min + ((start - min) >> node_log << node_log)).as_vec3a();
         let path = &mut memory.path;
         // Where the walk ends, for the next one: a position inside the node
         // at `depth` (whose path entries are all written).
         macro_rules! end {
             ($at:expr, $traced:expr) => {{
-                memory.corner = ($at - min_f).as_ivec3();
+                memory.corner = whole(($at - min_f).into());
                 memory.depth = depth;
                 return $traced;
             }};
@@ -343,6 +344,14 @@ const AXES: Vec3A = Vec3A::new(0.0, 1.0, 2.0);
 #[inline]
 fn pow2(log: u32) -> f32 {
     f32::from_bits((127 + log) << 23)
+}
+
+/// `rel` (exact whole numbers in `0..2^23`) as integers, from their bits
+/// once 2^23 is added (which puts the units in the mantissa's last bit).
+#[inline]
+fn whole(rel: glam::Vec3) -> IVec3 {
+    let bits = (rel + 8_388_608.0).to_array().map(|x| (x.to_bits() - 0x4b00_0000) as i32);
+    IVec3::from_array(bits)
 }
 
 /// The corner of the cube of side 2^log of the tree's grid (whose cubes
