@@ -5,7 +5,7 @@
 //! smallest distance from the apex to a non-empty box bounds every ray's
 //! hit from below: a ray enters a voxel on its boundary, and the voxel lies
 //! in the box. The rays
-//! then start their exact walks there (`Walk::start_from`) and find the same
+//! then start their exact walks there (`Walk::place_from`) and find the same
 //! hit as from the camera, without repeating the descent through the empty
 //! space the whole tile shares (the idea of Laine & Karras 2010, section 5).
 //!

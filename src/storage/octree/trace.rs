@@ -13,6 +13,8 @@
 //! It keeps the path of node indices from the root and, after each move,
 //! restarts from the deepest node whose cube still holds the position (the
 //! highest coordinate bit the move changed says which), not from the root.
+//! Corners, planes and moves stay on float lanes, where every coordinate of
+//! a tree is a whole number below 2^24 and so exact.
 
 use glam::{IVec3, Vec3A};
 
@@ -20,8 +22,8 @@ use crate::frustum::Frustum;
 use crate::geom::{IAabb, Ray, MAX_COORD};
 use crate::scene::{Hit, Scene, StartSeen, Traced, WalkMemory, MEMORY_PATH};
 use crate::storage::octree::lanes::Lanes;
-use crate::storage::octree::{brick_bit, child_rank, BrickMaterials, Node, NodeKind, OctreeScene};
-use crate::storage::walk::{Key, Walk};
+use crate::storage::octree::{child_rank, BrickMaterials, Node, NodeKind, OctreeScene};
+use crate::storage::walk::{Key, Walk, EXACT};
 
 /// The visitor of every trace but the debug view's: never stops the walk.
 fn keep_walking(_: IAabb) -> bool {
@@ -162,10 +164,14 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         if region.is_empty() {
             return missed;
         }
-        // (Bound straight from the call: no copy of the walk.)
-        let Some(walk) = Walk::start_from(ray, &region, t_start) else {
+        if t_start == f32::INFINITY {
             return missed;
-        };
+        }
+        // Built in place and placed by reference: no copy of the walk.
+        let mut walk = Walk::unplaced(ray, &region);
+        if walk.place_from(t_start).is_none() {
+            return missed;
+        }
         let lanes = Lanes::of(&walk);
         let min = self.bounds.min;
         let min_f = min.as_vec3a();
@@ -225,7 +231,16 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                         while known_log > 0 {
                             half_of(&lanes, key, at, known_log - 1, &mut at, &mut known_log);
                         }
-                        end!(at, self.hit(&walk, key, at.as_ivec3(), material, steps));
+                        end!(
+                            at,
+                            self.hit(
+                                &walk,
+                                key,
+                                min + whole((at - min_f).into()),
+                                material,
+                                steps
+                            )
+                        );
                     }
                     NodeKind::Brick {
                         occupancy,
@@ -243,7 +258,16 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                             break (cell, 0);
                         }
                         let material = self.brick_material(occupancy, materials, bit);
-                        end!(cell, self.hit(&walk, key, cell.as_ivec3(), material, steps));
+                        end!(
+                            cell,
+                            self.hit(
+                                &walk,
+                                key,
+                                min + whole((cell - min_f).into()),
+                                material,
+                                steps
+                            )
+                        );
                     }
                 }
             };
@@ -265,7 +289,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             // A crossing before both the caller's reach and the region's
             // exit stays inside: on the exit's own axis too, since crossing
             // times grow with the plane. Else the slower questions.
-            if !(exit.t < stays_before) {
+            let stays = exit.t < stays_before;
+            if !stays {
                 if exit.t == f32::INFINITY || exit.t > t_max {
                     // No plane of the cube is ever reached in f32, or the
                     // rest of the ray is beyond the caller's reach.
@@ -299,9 +324,10 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             }
             // Else the nodes whose cubes are wider than every changed bit
             // still hold the new position.
-            let from = (cube[axis] - min_f[axis]) as i32;
-            let to = (next[axis] - min_f[axis]) as i32;
-            let changed = (from ^ to) as u32;
+            // (Both relative coordinates are whole numbers below 2^23:
+            // with 2^23 added, their bits differ where the numbers do.)
+            let lifted = |c: Vec3A| (c - min_f + EXACT).to_array()[axis].to_bits();
+            let changed = lifted(cube) ^ lifted(next);
             let changed_log = u32::BITS - changed.leading_zeros();
             // Both cubes are inside the root cube (the walk returned above
             // once it left the region, which the root covers), so they
@@ -346,22 +372,31 @@ fn pow2(log: u32) -> f32 {
     f32::from_bits((127 + log) << 23)
 }
 
+/// Bits of `EXACT` (2^23): a whole number `n` below 2^23 plus `EXACT` has
+/// the bits `EXACT_BITS + n`, the units in the mantissa's last bit.
+const EXACT_BITS: u32 = 0x4b00_0000;
+
 /// `rel` (exact whole numbers in `0..2^23`) as integers, from their bits
-/// once 2^23 is added (which puts the units in the mantissa's last bit).
+/// once 2^23 is added: no saturating casts.
 #[inline]
 fn whole(rel: glam::Vec3) -> IVec3 {
-    let bits = (rel + 8_388_608.0).to_array().map(|x| (x.to_bits() - 0x4b00_0000) as i32);
+    let bits = (rel + EXACT)
+        .to_array()
+        .map(|x| (x.to_bits() - EXACT_BITS) as i32);
     IVec3::from_array(bits)
 }
 
 /// The corner of the cube of side 2^log of the tree's grid (whose cubes
 /// start at multiples of their side from `min`) that holds the corner
-/// `at`: exact, since scaling by a power of two and `floor` are.
+/// `at`: the relative coordinates' low `log` bits cleared, in the mantissa
+/// (exact for whole numbers below 2^23, which every corner of a tree is).
 #[inline]
 fn cube_at(at: Vec3A, min: Vec3A, log: u32) -> Vec3A {
-    // (2^-log from its bits: no division.)
-    let inverse = f32::from_bits((127 - log) << 23);
-    min + ((at - min) * inverse).floor() * pow2(log)
+    let keep = u32::MAX << log;
+    let lifted = (at - min + EXACT)
+        .to_array()
+        .map(|x| f32::from_bits(x.to_bits() & keep));
+    Vec3A::from_array(lifted) - EXACT + min
 }
 
 /// Which half of the cube at `corner` (side 2^(half_log + 1)) holds the

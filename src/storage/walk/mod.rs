@@ -116,9 +116,6 @@ pub(crate) struct Walk {
     cell: IVec3,
     /// Key of the crossing that entered `cell`.
     key: Key,
-    /// Crossing time of each axis' exit plane from `cell` (+inf if the ray
-    /// does not move along that axis).
-    next_t: [f32; 3],
     /// Moves made so far.
     steps: u32,
 }
@@ -147,17 +144,6 @@ impl Walk {
         self.cell.cmpge(self.lo).all() && self.cell.cmplt(self.hi).all()
     }
 
-    fn refresh_next(&mut self) {
-        for axis in 0..3 {
-            self.next_t[axis] = if self.step[axis] == 0 {
-                f32::INFINITY
-            } else {
-                self.crossing(axis, self.exit_plane(axis, self.cell[axis]))
-                    .t
-            };
-        }
-    }
-
     /// The current cell (inside the volume).
     #[inline]
     pub(crate) fn cell(&self) -> IVec3 {
@@ -172,10 +158,18 @@ impl Walk {
 
     /// Crossing time of each axis' exit plane from the current cell (+inf
     /// on an axis the ray does not move along): the state a specialised
-    /// loop continues single steps from.
+    /// loop continues single steps from. Computed from the cell on each
+    /// call, so walks that never step (the octree's) never pay for it.
     #[inline]
     pub(crate) fn next_t(&self) -> [f32; 3] {
-        self.next_t
+        core::array::from_fn(|axis| {
+            if self.step[axis] == 0 {
+                f32::INFINITY
+            } else {
+                self.crossing(axis, self.exit_plane(axis, self.cell[axis]))
+                    .t
+            }
+        })
     }
 
     /// Moves made so far.
@@ -223,12 +217,6 @@ impl Walk {
         earliest(t)
     }
 
-    /// Whether the ray moves toward `+axis`.
-    #[inline]
-    pub(crate) fn moves_up(&self, axis: usize) -> bool {
-        self.step[axis] > 0
-    }
-
     /// The ray's origin, reciprocal direction, start cell and per-axis
     /// steps (+1, -1, or 0): what a caller needs to ask the walk's
     /// questions in another form (the octree's four-lane `Lanes`).
@@ -241,7 +229,7 @@ impl Walk {
     /// (or never reaches another plane).
     #[inline]
     pub(crate) fn step(&mut self) -> bool {
-        let key = earliest(Vec3::from_array(self.next_t));
+        let key = earliest(Vec3::from_array(self.next_t()));
         if key.t == f32::INFINITY {
             return false;
         }
@@ -253,7 +241,6 @@ impl Walk {
             return false;
         }
         self.cell[axis] = c;
-        self.next_t[axis] = self.crossing(axis, self.exit_plane(axis, c)).t;
         true
     }
 }

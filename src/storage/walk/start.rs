@@ -19,17 +19,42 @@ impl Walk {
         Walk::begin(ray, bounds, Key::BEFORE)
     }
 
-    /// [`Walk::start`], but placed where the ray is at the key `(t_start,
-    /// x)` if it enters the volume before that: in the cell reached after
+    /// The walk of `ray` through `bounds` in its start cell, not yet
+    /// entered: what [`Walk::place_from`] moves to where the walk begins.
+    /// Inlined, so that a caller builds it in place instead of receiving a
+    /// copy.
+    #[inline(always)]
+    pub(crate) fn unplaced(ray: &Ray, bounds: &IAabb) -> Walk {
+        let (origin, dir, inv_dir) = ray.lanes();
+        let (step, start, start_keys) = start_rule(ray);
+        let step = IVec3::from_array(step);
+        let start = IVec3::from_array(start);
+        Walk {
+            origin,
+            dir,
+            inv_dir,
+            step,
+            start,
+            start_keys,
+            lo: bounds.min,
+            hi: bounds.max,
+            cell: start,
+            key: Key::BEFORE,
+            steps: 0,
+            up: step.cmpgt(IVec3::ZERO),
+            moving: step.cmpne(IVec3::ZERO),
+        }
+    }
+
+    /// Places an [`Walk::unplaced`] walk for a finite `t_start` as
+    /// [`Walk::start`] does, but where the ray is at the key `(t_start, x)`
+    /// if it enters the volume before that: in the cell reached after
     /// every crossing strictly before that key, entered by the latest of
     /// its per-axis entry crossings, as single steps would leave it. `None`
-    /// when the ray has left the volume by then. Walking on from there finds
-    /// the same hit as walking from the start, provided no solid cell is
-    /// entered before `t_start`.
-    pub(crate) fn start_from(ray: &Ray, bounds: &IAabb, t_start: f32) -> Option<Walk> {
-        if t_start == f32::INFINITY {
-            return None;
-        }
+    /// when the ray has left the volume by then. Walking on from there
+    /// finds the same hit as walking from the start, provided no solid
+    /// cell is entered before `t_start`.
+    pub(crate) fn place_from(&mut self, t_start: f32) -> Option<()> {
         // At 0 or before, the start is already where the ray is.
         let not_before = if t_start > 0.0 {
             Key {
@@ -39,7 +64,7 @@ impl Walk {
         } else {
             Key::BEFORE
         };
-        Walk::begin(ray, bounds, not_before)
+        self.enter(not_before)
     }
 
     /// The cell a ray starts in, by the start rule, and the face a hit in
@@ -67,29 +92,9 @@ impl Walk {
 
     /// The walk in its first cell inside `bounds` at or after `not_before`.
     fn begin(ray: &Ray, bounds: &IAabb, not_before: Key) -> Option<Walk> {
-        let (origin, dir, inv_dir) = ray.lanes();
-        let (step, start, start_keys) = start_rule(ray);
-        let step = IVec3::from_array(step);
-        let start = IVec3::from_array(start);
-        // Built where it is returned (no copy of the walk on the way out).
-        let mut walk = Some(Walk {
-            origin,
-            dir,
-            inv_dir,
-            step,
-            start,
-            start_keys,
-            lo: bounds.min,
-            hi: bounds.max,
-            cell: start,
-            key: Key::BEFORE,
-            next_t: [f32::INFINITY; 3],
-            steps: 0,
-            up: step.cmpgt(IVec3::ZERO),
-            moving: step.cmpne(IVec3::ZERO),
-        });
-        walk.as_mut()?.enter(not_before)?;
-        walk
+        let mut walk = Walk::unplaced(ray, bounds);
+        walk.enter(not_before)?;
+        Some(walk)
     }
 
     /// Moves the walk from its start cell to the first cell inside the
@@ -152,7 +157,6 @@ impl Walk {
             }
         }
         self.key = key_in;
-        self.refresh_next();
         Some(())
     }
 
@@ -196,7 +200,6 @@ impl Walk {
             }
         }
         self.key = entered;
-        self.refresh_next();
         Some(())
     }
 
