@@ -25,6 +25,7 @@ pub(crate) struct Lanes {
 
 impl Lanes {
     /// The lanes of `walk`.
+    #[inline]
     pub(crate) fn of(walk: &Walk) -> Lanes {
         let (origin, inv_dir, start, step) = walk.parts();
         let step = step.as_vec3a();
