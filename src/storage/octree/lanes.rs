@@ -5,6 +5,7 @@
 
 use glam::{BVec3A, Vec3A};
 
+use crate::storage::octree::grid::pow2;
 use crate::storage::walk::{Key, Walk};
 
 /// A ray's walk, reduced to what the octree asks of it.
@@ -85,5 +86,35 @@ impl Lanes {
         // Moving up: above once crossed; moving down: above until crossed;
         // not moving: where the start is.
         (behind_start & !(self.down & crossed)) | (self.up & crossed)
+    }
+
+    /// Which half of the cube at `corner` (side 2^(half_log + 1)) holds the
+    /// position: its corner and octant (`x | y << 1 | z << 2`). A position
+    /// known only to that cube (`known_log` above `half_log`) is narrowed to
+    /// the half by the side of the midplanes the ray is on at `key`; a finer
+    /// one already lies in one half.
+    #[inline(always)]
+    pub(crate) fn half_of(
+        &self,
+        key: Key,
+        corner: Vec3A,
+        half_log: u32,
+        at: &mut Vec3A,
+        known_log: &mut u32,
+    ) -> (Vec3A, u32) {
+        let half = Vec3A::splat(pow2(half_log));
+        let planes = corner + half;
+        let narrow = *known_log > half_log;
+        let upper = if narrow {
+            self.upper_sides(planes, key)
+        } else {
+            at.cmpge(planes)
+        };
+        let child = corner + Vec3A::select(upper, half, Vec3A::ZERO);
+        if narrow {
+            *at = child;
+            *known_log = half_log;
+        }
+        (child, upper.bitmask())
     }
 }

@@ -20,6 +20,7 @@ pub(crate) mod beam;
 pub(crate) mod build;
 #[cfg(feature = "rayon")]
 pub(crate) mod build_par;
+mod grid;
 pub(crate) mod lanes;
 mod memory;
 pub(crate) mod trace;

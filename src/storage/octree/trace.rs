@@ -21,9 +21,10 @@ use glam::{IVec3, Vec3A};
 use crate::frustum::Frustum;
 use crate::geom::{IAabb, Ray, MAX_COORD};
 use crate::scene::{Hit, Scene, StartSeen, Traced, WalkMemory, MEMORY_PATH};
+use crate::storage::octree::grid::{changed_bits, cube_at, pow2, spread, whole, AXES};
 use crate::storage::octree::lanes::Lanes;
 use crate::storage::octree::{child_rank, BrickMaterials, Node, NodeKind, OctreeScene};
-use crate::storage::walk::{Key, Walk, EXACT};
+use crate::storage::walk::{Key, Walk};
 
 /// The visitor of every trace but the debug view's: never stops the walk.
 fn keep_walking(_: IAabb) -> bool {
@@ -214,7 +215,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                     NodeKind::Branch { children, first } => {
                         let half_log = root_log - depth as u32 - 1;
                         let (child, octant) =
-                            half_of(&lanes, key, node_at, half_log, &mut at, &mut known_log);
+                            lanes.half_of(key, node_at, half_log, &mut at, &mut known_log);
                         if children & (1 << octant) == 0 {
                             break (child, half_log);
                         }
@@ -229,7 +230,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                         // The voxel the ray is in: the known cube, halved
                         // down to side 1.
                         while known_log > 0 {
-                            half_of(&lanes, key, at, known_log - 1, &mut at, &mut known_log);
+                            lanes.half_of(key, at, known_log - 1, &mut at, &mut known_log);
                         }
                         end!(
                             at,
@@ -247,12 +248,12 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                         materials,
                     } => {
                         let (group, upper) =
-                            half_of(&lanes, key, node_at, 1, &mut at, &mut known_log);
+                            lanes.half_of(key, node_at, 1, &mut at, &mut known_log);
                         let group_bit = spread(upper) << 1;
                         if occupancy & GROUP << group_bit == 0 {
                             break (group, 1);
                         }
-                        let (cell, upper) = half_of(&lanes, key, group, 0, &mut at, &mut known_log);
+                        let (cell, upper) = lanes.half_of(key, group, 0, &mut at, &mut known_log);
                         let bit = group_bit | spread(upper);
                         if occupancy >> bit & 1 == 0 {
                             break (cell, 0);
@@ -324,10 +325,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             }
             // Else the nodes whose cubes are wider than every changed bit
             // still hold the new position.
-            // (Both relative coordinates are whole numbers below 2^23:
-            // with 2^23 added, their bits differ where the numbers do.)
-            let lifted = |c: Vec3A| (c - min_f + EXACT).to_array()[axis].to_bits();
-            let changed = lifted(cube) ^ lifted(next);
+            let changed = changed_bits(cube, next, min_f, axis);
             let changed_log = u32::BITS - changed.leading_zeros();
             // Both cubes are inside the root cube (the walk returned above
             // once it left the region, which the root covers), so they
@@ -361,77 +359,4 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let hit = Hit::from_palette(&self.palette, pos, face, t, material);
         Traced { hit, steps }
     }
-}
-
-/// Lane indices as floats, to turn an axis into a lane mask.
-const AXES: Vec3A = Vec3A::new(0.0, 1.0, 2.0);
-
-/// 2^log as an exact float, for `log` below 128.
-#[inline]
-fn pow2(log: u32) -> f32 {
-    f32::from_bits((127 + log) << 23)
-}
-
-/// Bits of `EXACT` (2^23): a whole number `n` below 2^23 plus `EXACT` has
-/// the bits `EXACT_BITS + n`, the units in the mantissa's last bit.
-const EXACT_BITS: u32 = 0x4b00_0000;
-
-/// `rel` (exact whole numbers in `0..2^23`) as integers, from their bits
-/// once 2^23 is added: no saturating casts.
-#[inline]
-fn whole(rel: glam::Vec3) -> IVec3 {
-    let bits = (rel + EXACT)
-        .to_array()
-        .map(|x| (x.to_bits() - EXACT_BITS) as i32);
-    IVec3::from_array(bits)
-}
-
-/// The corner of the cube of side 2^log of the tree's grid (whose cubes
-/// start at multiples of their side from `min`) that holds the corner
-/// `at`: the relative coordinates' low `log` bits cleared, in the mantissa
-/// (exact for whole numbers below 2^23, which every corner of a tree is).
-#[inline]
-fn cube_at(at: Vec3A, min: Vec3A, log: u32) -> Vec3A {
-    let keep = u32::MAX << log;
-    let lifted = (at - min + EXACT)
-        .to_array()
-        .map(|x| f32::from_bits(x.to_bits() & keep));
-    Vec3A::from_array(lifted) - EXACT + min
-}
-
-/// Which half of the cube at `corner` (side 2^(half_log + 1)) holds the
-/// position: its corner and octant (`x | y << 1 | z << 2`). A position
-/// known only to that cube (`known_log` above `half_log`) is narrowed to
-/// the half by the side of the midplanes the ray is on at `key`; a finer
-/// one already lies in one half.
-#[inline(always)]
-fn half_of(
-    lanes: &Lanes,
-    key: Key,
-    corner: Vec3A,
-    half_log: u32,
-    at: &mut Vec3A,
-    known_log: &mut u32,
-) -> (Vec3A, u32) {
-    let half = Vec3A::splat(pow2(half_log));
-    let planes = corner + half;
-    let narrow = *known_log > half_log;
-    let upper = if narrow {
-        lanes.upper_sides(planes, key)
-    } else {
-        at.cmpge(planes)
-    };
-    let child = corner + Vec3A::select(upper, half, Vec3A::ZERO);
-    if narrow {
-        *at = child;
-        *known_log = half_log;
-    }
-    (child, upper.bitmask())
-}
-
-/// Octant bits `x | y << 1 | z << 2` spread to a brick's bit layout
-/// `x | y << 2 | z << 4`.
-#[inline]
-fn spread(octant: u32) -> u32 {
-    (octant & 1) | (octant & 2) << 1 | (octant & 4) << 2
 }
