@@ -40,9 +40,9 @@ fn pick(mask: BVec3A, a: IVec3, b: IVec3) -> IVec3 {
 impl Walk {
     /// What `settle_all` does, decided on three lanes when every moving
     /// axis' guess checks out: `Some(true)` placed in the cell the ray is in
-    /// at `key` (with its entry key and exit crossings), `Some(false)` when
-    /// the ray has left the volume by `key`, `None` (nothing changed) when
-    /// a guess is off and the stepwise search must decide.
+    /// at `key` (with its entry key), `Some(false)` when the ray has left
+    /// the volume by `key`, `None` (nothing changed) when a guess is off
+    /// and the stepwise search must decide.
     #[inline]
     pub(super) fn place_by_guess(&mut self, key: Key) -> Option<bool> {
         let (origin, inv_dir) = (self.origin, self.inv_dir);
@@ -85,8 +85,8 @@ impl Walk {
         }
         // Placed: the cell, its entry key (the latest of the moving axes'
         // entries, ties to the highest axis, as `Key::lt` orders them; a
-        // start key off its plane is before everything) and its exit
-        // crossings; an axis that does not move keeps its start.
+        // start key off its plane is before everything); an axis that does
+        // not move keeps its start.
         let entries = Vec3A::select(moving, entry_t, Vec3A::NEG_INFINITY);
         let latest = entries.max_element();
         self.key = if latest == f32::NEG_INFINITY {
@@ -174,8 +174,9 @@ mod tests {
     }
 
     /// The lane placement decides as the stepwise search does: the same
-    /// cell, entry key and exit crossings, or the same "left the volume",
-    /// whenever it decides at all; and it decides for most keys.
+    /// cell and entry key (so the same exit crossings), or the same "left
+    /// the volume", whenever it decides at all; and it decides for most
+    /// keys.
     #[test]
     fn guesses_agree_with_the_stepwise_search() {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);

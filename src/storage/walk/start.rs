@@ -46,7 +46,7 @@ impl Walk {
         }
     }
 
-    /// Places an [`Walk::unplaced`] walk for a finite `t_start` as
+    /// Places a walk from [`Walk::unplaced`] for a finite `t_start` as
     /// [`Walk::start`] does, but where the ray is at the key `(t_start, x)`
     /// if it enters the volume before that: in the cell reached after
     /// every crossing strictly before that key, entered by the latest of
