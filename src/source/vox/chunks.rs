@@ -86,3 +86,43 @@ pub(crate) fn numbers<const N: usize>(text: Option<&String>) -> Option<[f32; N]>
     }
     Some(out)
 }
+
+/// Writers of the stream the reader above reads, for the tests of the
+/// chunks built on it (rOBJ, rCAM).
+#[cfg(test)]
+pub(crate) mod write {
+    use std::vec::Vec;
+
+    /// MagicaVoxel's DICT of `pairs`: a count, then each key and value as
+    /// a length and its bytes.
+    pub(crate) fn dict(pairs: &[(&str, &str)]) -> Vec<u8> {
+        let mut d = (pairs.len() as u32).to_le_bytes().to_vec();
+        for (k, v) in pairs {
+            for s in [k, v] {
+                d.extend_from_slice(&(s.len() as u32).to_le_bytes());
+                d.extend_from_slice(s.as_bytes());
+            }
+        }
+        d
+    }
+
+    /// A chunk `id` with `content` and no children.
+    pub(crate) fn chunk(id: &[u8; 4], content: &[u8]) -> Vec<u8> {
+        let mut out = id.to_vec();
+        out.extend_from_slice(&(content.len() as u32).to_le_bytes());
+        out.extend_from_slice(&0u32.to_le_bytes());
+        out.extend_from_slice(content);
+        out
+    }
+
+    /// A version-150 file whose MAIN chunk has `children`.
+    pub(crate) fn file(children: &[u8]) -> Vec<u8> {
+        let mut out = b"VOX ".to_vec();
+        out.extend_from_slice(&150u32.to_le_bytes());
+        out.extend_from_slice(b"MAIN");
+        out.extend_from_slice(&0u32.to_le_bytes());
+        out.extend_from_slice(&(children.len() as u32).to_le_bytes());
+        out.extend_from_slice(children);
+        out
+    }
+}

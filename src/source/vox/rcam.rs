@@ -233,32 +233,18 @@ pub(crate) fn cameras(bytes: &[u8], warnings: &mut Vec<String>) -> Vec<VoxCamera
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::source::vox::chunks::write;
     use std::vec;
 
     /// A file of MAIN holding one rCAM chunk per `(id, pairs)`.
     fn file(cams: &[(u32, &[(&str, &str)])]) -> Vec<u8> {
         let mut children = Vec::new();
         for (id, pairs) in cams {
-            let mut d = id.to_le_bytes().to_vec();
-            d.extend_from_slice(&(pairs.len() as u32).to_le_bytes());
-            for (k, v) in *pairs {
-                for s in [k, v] {
-                    d.extend_from_slice(&(s.len() as u32).to_le_bytes());
-                    d.extend_from_slice(s.as_bytes());
-                }
-            }
-            children.extend_from_slice(b"rCAM");
-            children.extend_from_slice(&(d.len() as u32).to_le_bytes());
-            children.extend_from_slice(&0u32.to_le_bytes());
-            children.extend_from_slice(&d);
+            let mut content = id.to_le_bytes().to_vec();
+            content.extend_from_slice(&write::dict(pairs));
+            children.extend_from_slice(&write::chunk(b"rCAM", &content));
         }
-        let mut out = b"VOX ".to_vec();
-        out.extend_from_slice(&150u32.to_le_bytes());
-        out.extend_from_slice(b"MAIN");
-        out.extend_from_slice(&0u32.to_le_bytes());
-        out.extend_from_slice(&(children.len() as u32).to_le_bytes());
-        out.extend_from_slice(&children);
-        out
+        write::file(&children)
     }
 
     fn near(a: Vec3, b: Vec3) -> bool {

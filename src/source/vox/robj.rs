@@ -87,29 +87,12 @@ pub(crate) fn settings(bytes: &[u8]) -> VoxSettings {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::source::vox::chunks::write;
     use std::vec::Vec;
 
     /// A file of MAIN with one rOBJ chunk holding `pairs`.
     fn file(pairs: &[(&str, &str)]) -> Vec<u8> {
-        let mut d = Vec::new();
-        d.extend_from_slice(&(pairs.len() as u32).to_le_bytes());
-        for (k, v) in pairs {
-            for s in [k, v] {
-                d.extend_from_slice(&(s.len() as u32).to_le_bytes());
-                d.extend_from_slice(s.as_bytes());
-            }
-        }
-        let mut chunk = b"rOBJ".to_vec();
-        chunk.extend_from_slice(&(d.len() as u32).to_le_bytes());
-        chunk.extend_from_slice(&0u32.to_le_bytes());
-        chunk.extend_from_slice(&d);
-        let mut out = b"VOX ".to_vec();
-        out.extend_from_slice(&150u32.to_le_bytes());
-        out.extend_from_slice(b"MAIN");
-        out.extend_from_slice(&0u32.to_le_bytes());
-        out.extend_from_slice(&(chunk.len() as u32).to_le_bytes());
-        out.extend_from_slice(&chunk);
-        out
+        write::file(&write::chunk(b"rOBJ", &write::dict(pairs)))
     }
 
     #[test]
