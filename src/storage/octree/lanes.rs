@@ -1,21 +1,28 @@
 //! `Lanes`: the octree's two questions of a ray's walk (`storage/walk/`)
 //! in four-lane form, answered with exactly the crossings, start rule and
-//! order of the walk: where the ray leaves a box ([`Walk::exit_of`]) and on
+//! order of the walk: where the ray leaves a box (`Walk::exit_of`) and on
 //! which side of three midplanes it is at a key. Built once per ray.
 
 use glam::{BVec3A, Vec3A};
 
+use crate::geom::{Face, Ray};
 use crate::storage::octree::grid::pow2;
-use crate::storage::walk::{Key, Walk};
+#[cfg(doc)]
+use crate::storage::walk::Walk;
+use crate::storage::walk::{directions, exact_start, latest, start_lanes, Key};
 
 /// A ray's walk, reduced to what the octree asks of it.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Lanes {
     origin: Vec3A,
+    dir: Vec3A,
     inv_dir: Vec3A,
     /// The start cell, as floats: exact below 2^24, and a saturated cell of
     /// a huge origin keeps its order against every plane of a volume.
-    start: Vec3A,
+    pub(crate) start: Vec3A,
+    /// The times of the start keys: 0 on an axis whose entry plane the
+    /// origin lies on, else before everything.
+    start_t: Vec3A,
     /// The walk's steps as floats: +1, -1, or 0 on an axis it does not
     /// move along.
     pub(crate) step: Vec3A,
@@ -25,23 +32,90 @@ pub(crate) struct Lanes {
 }
 
 impl Lanes {
-    /// The lanes of `walk`.
+    /// The lanes of a walk of `ray`: its start rule ([`start_lanes`]) and
+    /// its crossings.
     #[inline]
-    pub(crate) fn of(walk: &Walk) -> Lanes {
-        let (origin, inv_dir, start, step) = walk.parts();
-        let step = step.as_vec3a();
+    pub(crate) fn of(ray: &Ray) -> Lanes {
+        let (origin, dir, inv_dir) = ray.lanes();
+        let (up, down) = directions(ray);
+        // On float lanes but for huge origins (then from the integer rule).
+        let (start, on_plane) = exact_start(origin, up, down).unwrap_or_else(|| {
+            let (_, start, on_plane) = start_lanes(ray);
+            (start.as_vec3a(), on_plane)
+        });
+        let one = |mask| Vec3A::select(mask, Vec3A::ONE, Vec3A::ZERO);
         Lanes {
             origin,
+            dir,
             inv_dir,
-            start: start.as_vec3a(),
-            step,
-            up: step.cmpgt(Vec3A::ZERO),
-            down: step.cmplt(Vec3A::ZERO),
-            moving: step.cmpne(Vec3A::ZERO),
+            start,
+            start_t: Vec3A::select(on_plane, Vec3A::ZERO, Vec3A::NEG_INFINITY),
+            step: one(up) - one(down),
+            up,
+            down,
+            moving: up | down,
         }
     }
 
-    /// [`Walk::exit_of`] for the box `[lo, hi)` given as exact floats: the
+    /// The key at which the ray enters the box `[lo, hi)` (exact floats),
+    /// as the walk's entry computes it: the latest of the per-axis entries,
+    /// a start key on an axis where the start cell is inside, and whether
+    /// it is inside on every axis (then the start cell is where the walk
+    /// begins). `None` when the start is outside on an axis the ray does
+    /// not move toward; `+inf` when it never gets in.
+    #[inline]
+    pub(crate) fn entry_of(&self, lo: Vec3A, hi: Vec3A) -> Option<(Key, bool)> {
+        let inside = self.start.cmpge(lo) & self.start.cmplt(hi);
+        let toward = (self.up & self.start.cmplt(lo)) | (self.down & self.start.cmpge(hi));
+        if !(inside | toward).all() {
+            return None;
+        }
+        let near = Vec3A::select(self.up, lo, hi);
+        let t = Vec3A::select(inside, self.start_t, (near - self.origin) * self.inv_dir);
+        Some((latest(t), inside.all()))
+    }
+
+    /// The key at which the ray enters `cell` (exact floats): the latest
+    /// of its moving axes' entry crossings, the start key on an axis where
+    /// it is the start cell's coordinate. What the walk's key is in every
+    /// cell it reaches by crossings.
+    #[inline]
+    pub(crate) fn entry_key_of(&self, cell: Vec3A) -> Key {
+        // Moving up a cell is entered through its lower plane.
+        let entry_plane = Vec3A::select(self.up, cell, cell + 1.0);
+        let crossed = (entry_plane - self.origin) * self.inv_dir;
+        let t = Vec3A::select(cell.cmpeq(self.start), self.start_t, crossed);
+        latest(Vec3A::select(self.moving, t, Vec3A::NEG_INFINITY))
+    }
+
+    /// The face through which the crossing `key` enters, and its distance
+    /// (`None` and 0 before every crossing), as [`Walk::entry_at`] says.
+    #[inline]
+    pub(crate) fn entry_at(&self, key: Key) -> (Option<Face>, f32) {
+        if key.t == f32::NEG_INFINITY {
+            (None, 0.0)
+        } else {
+            let up = self.up.bitmask() >> key.axis & 1 != 0;
+            (Some(Face::entered(usize::from(key.axis), up)), key.t)
+        }
+    }
+
+    /// The point the ray reaches at distance `t`, rounded: a guess of where
+    /// it is, for callers that decide by key comparisons.
+    #[inline]
+    pub(crate) fn point_at(&self, t: f32) -> Vec3A {
+        self.origin + self.dir * t
+    }
+
+    /// Whether the cell the walk is in at `key` lies in the box `[lo, hi)`
+    /// (exact floats), by [`Lanes::upper_sides`] of its faces, for a `key`
+    /// that is no crossing of those planes.
+    #[inline]
+    pub(crate) fn holds(&self, lo: Vec3A, hi: Vec3A, key: Key) -> bool {
+        self.upper_sides(lo, key).all() && !self.upper_sides(hi, key).any()
+    }
+
+    /// `Walk::exit_of` for the box `[lo, hi)` given as exact floats: the
     /// earliest far-plane crossing, ties to the lowest axis.
     #[inline]
     pub(crate) fn exit_of(&self, lo: Vec3A, hi: Vec3A) -> Key {
@@ -116,5 +190,122 @@ impl Lanes {
             *known_log = half_log;
         }
         (child, upper.bitmask())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{IVec3, Vec3A};
+
+    use super::Lanes;
+    use crate::storage::walk::test_rays::Rng;
+    use crate::storage::walk::{Key, Walk};
+
+    /// The box's corners as the exact floats the octree keeps.
+    fn lanes_of(b: crate::geom::IAabb) -> (Vec3A, Vec3A) {
+        (b.min.as_vec3a(), b.max.as_vec3a())
+    }
+
+    /// Where a ray enters a box, on lanes, is where the walk enters it: the
+    /// same key, and the start cell when the ray starts inside.
+    #[test]
+    fn entries_agree_with_the_walk() {
+        let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+        let mut entered = 0;
+        for _ in 0..40_000 {
+            let bounds = rng.bounds();
+            let Some(ray) = rng.ray_at(bounds) else {
+                continue;
+            };
+            let lanes = Lanes::of(&ray);
+            let (lo, hi) = lanes_of(bounds);
+            let entry = lanes.entry_of(lo, hi);
+            let Some(walk) = Walk::start(&ray, &bounds) else {
+                continue;
+            };
+            entered += 1;
+            let (key, inside) = entry.expect("the walk entered the box");
+            assert_eq!(key, walk.key(), "{ray:?} {bounds:?}");
+            if inside {
+                assert_eq!(lanes.start.as_ivec3(), walk.cell(), "{ray:?} {bounds:?}");
+            }
+            assert_eq!(lanes.exit_of(lo, hi), walk.exit_of(bounds.min, bounds.max));
+        }
+        assert!(entered > 10_000, "{entered} walks entered");
+    }
+
+    /// Every cell a walk reaches by single steps is entered at the key the
+    /// lanes compute for it, and the face and distance the walk reports.
+    #[test]
+    fn entry_keys_agree_with_single_steps() {
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        let mut cells = 0;
+        for _ in 0..4_000 {
+            let bounds = rng.bounds();
+            let Some(ray) = rng.ray_at(bounds) else {
+                continue;
+            };
+            let lanes = Lanes::of(&ray);
+            let Some(mut walk) = Walk::start(&ray, &bounds) else {
+                continue;
+            };
+            loop {
+                let key = lanes.entry_key_of(walk.cell().as_vec3a());
+                assert_eq!(key, walk.key(), "{ray:?} {bounds:?} {:?}", walk.cell());
+                assert_eq!(lanes.entry_at(key), walk.entry());
+                cells += 1;
+                if !walk.step() {
+                    break;
+                }
+            }
+        }
+        assert!(cells > 20_000, "{cells} cells");
+    }
+
+    /// A walk placed at a key that is no crossing is in exactly the boxes
+    /// that hold the cell the stepwise placement settles on, at keys
+    /// that tie with plane crossings too.
+    #[test]
+    fn a_key_is_held_by_the_boxes_around_its_cell() {
+        let mut rng = Rng(0x1234_5678_9abc_def1);
+        let mut checked = 0;
+        for _ in 0..40_000 {
+            let bounds = rng.bounds();
+            let Some(ray) = rng.ray_at(bounds) else {
+                continue;
+            };
+            let lanes = Lanes::of(&ray);
+            let t = if rng.next() % 2 == 0 {
+                rng.range(0.0, 90.0)
+            } else {
+                // Exactly a crossing: the key (t, x) ties with it.
+                let axis = (rng.next() % 3) as usize;
+                let plane = rng.int(-40, 40) as f32;
+                (plane - ray.origin()[axis]) * ray.inv_dir()[axis]
+            };
+            if !(t > 0.0 && t.is_finite()) {
+                continue;
+            }
+            let mut walk = Walk::start(&ray, &bounds).map(|_| Walk::unplaced(&ray, &bounds));
+            let Some(walk) = walk.as_mut() else { continue };
+            let key = Key { t, axis: 0 };
+            if walk.place_from(t).is_none() || !walk.key().lt(key) {
+                continue;
+            }
+            let cell = walk.cell();
+            for _ in 0..8 {
+                let lo = cell + IVec3::new(rng.int(-3, 2), rng.int(-3, 2), rng.int(-3, 2));
+                let hi = lo + IVec3::new(rng.int(1, 4), rng.int(1, 4), rng.int(1, 4));
+                let contains = cell.cmpge(lo).all() && cell.cmplt(hi).all();
+                let (lo_f, hi_f) = (lo.as_vec3a(), hi.as_vec3a());
+                assert_eq!(
+                    lanes.holds(lo_f, hi_f, key),
+                    contains,
+                    "{ray:?} {t} {lo} {hi}"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked > 20_000, "{checked} boxes");
     }
 }

@@ -5,7 +5,7 @@
 //! ray by comparing the midplanes' crossing keys with that key
 //! (`Lanes::upper_sides`); an empty cube, whether an absent child or an
 //! empty 2x2x2 group of a brick, it leaves at the earliest key of its far
-//! planes ([`Walk::exit_of`]), stepping to the neighbouring cube of the same
+//! planes ([`Lanes::exit_of`]), stepping to the neighbouring cube of the same
 //! size. Both questions use the crossings and the order single steps use,
 //! so the hit is the dense array's, bit for bit, without ever estimating a
 //! cell coordinate.
@@ -19,10 +19,11 @@
 use glam::{IVec3, Vec3A};
 
 use crate::frustum::Frustum;
-use crate::geom::{IAabb, Ray, MAX_COORD};
-use crate::scene::{Hit, Scene, StartSeen, Traced, WalkMemory, MEMORY_PATH};
+use crate::geom::{IAabb, Ray};
+use crate::scene::{Hit, Scene, StartSeen, Traced, WalkMemory};
 use crate::storage::octree::grid::{changed_bits, cube_at, pow2, spread, whole, AXES};
 use crate::storage::octree::lanes::Lanes;
+use crate::storage::octree::memory::{Begun, PATH};
 use crate::storage::octree::{child_rank, BrickMaterials, Node, NodeKind, OctreeScene};
 use crate::storage::walk::{Key, Walk};
 
@@ -30,17 +31,6 @@ use crate::storage::walk::{Key, Walk};
 fn keep_walking(_: IAabb) -> bool {
     true
 }
-
-/// Entries of the path: the largest root has side `2 * MAX_COORD` = 2^23,
-/// and halving it down to side-4 bricks takes depths 0 to 21.
-const MAX_DEPTH: usize = (2 * MAX_COORD as u32).trailing_zeros() as usize - 1;
-
-/// Entries of the path array: a power of two above `MAX_DEPTH`, so that
-/// indexing it modulo its length needs no bounds check.
-pub(super) const PATH: usize = (MAX_DEPTH + 1).next_power_of_two();
-
-// The path lives in a `WalkMemory`.
-const _: () = assert!(PATH == MEMORY_PATH);
 
 /// Occupancy bits of the 2x2x2 group at the brick's local origin: `x | y << 2
 /// | z << 4` for `x, y, z` in `{0, 1}`.
@@ -168,35 +158,34 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         if t_start == f32::INFINITY {
             return missed;
         }
-        // Built in place and placed by reference: no copy of the walk.
-        let mut walk = Walk::unplaced(ray, &region);
-        if walk.place_from(t_start).is_none() {
+        let lanes = Lanes::of(ray);
+        let (region_lo, region_hi) = (region.min.as_vec3a(), region.max.as_vec3a());
+        let leaves_region = lanes.exit_of(region_lo, region_hi);
+        let Some(begun) = self.begin(ray, &lanes, region, leaves_region, t_start, memory) else {
             return missed;
-        }
-        let lanes = Lanes::of(&walk);
+        };
+        let stays_before = leaves_region.t.min(t_max);
         let min = self.bounds.min;
         let min_f = min.as_vec3a();
-        let leaves_region = walk.exit_of(region.min, region.max);
-        let stays_before = leaves_region.t.min(t_max);
-        let (region_lo, region_hi) = (region.min.as_vec3a(), region.max.as_vec3a());
         let nodes = self.nodes.as_ref();
         let root_log = self.root_size.trailing_zeros();
+        let mut steps = 0;
         // The position: the ray is, at `key`, in the cube of side
         // 2^known_log at `at`. Corners are kept in world coordinates as
         // floats, which are exact: every corner and plane of the tree lies
         // within 2^24 of the origin (`MAX_COORD` and the root's side).
-        let mut key = walk.key();
-        let start = walk.cell();
-        let mut at = start.as_vec3a();
-        let mut known_log = 0;
-        let mut steps = 0;
         // path[d] (1 <= d <= depth): index of the node at depth d holding
         // the position, whose cube has side 2^(root_log - d); `node` is the
-        // one at `depth` itself, its cube's corner `node_at`. The descent
-        // begins where the memory knows the way.
-        let (mut depth, mut node) = self.recall(start - min, memory);
-        let node_log = root_log - depth as u32;
-        let mut node_at = (min + ((start - min) >> node_log << node_log)).as_vec3a();
+        // one at `depth` itself, its cube's corner `node_at`.
+        let Begun {
+            mut key,
+            mut at,
+            mut known_log,
+            mut depth,
+            mut node,
+            mut node_at,
+            placed_key,
+        } = begun;
         let path = &mut memory.path;
         // Where the walk ends, for the next one: a position inside the node
         // at `depth` (whose path entries are all written).
@@ -235,11 +224,12 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                         end!(
                             at,
                             self.hit(
-                                &walk,
+                                &lanes,
                                 key,
                                 min + whole((at - min_f).into()),
                                 material,
-                                steps
+                                steps,
+                                placed_key
                             )
                         );
                     }
@@ -262,11 +252,12 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                         end!(
                             cell,
                             self.hit(
-                                &walk,
+                                &lanes,
                                 key,
                                 min + whole((cell - min_f).into()),
                                 material,
-                                steps
+                                steps,
+                                placed_key
                             )
                         );
                     }
@@ -354,8 +345,24 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         }
     }
 
-    fn hit(&self, walk: &Walk, key: Key, pos: IVec3, material: u8, steps: u32) -> Traced {
-        let (face, t) = walk.entry_at(key);
+    /// The hit in cell `pos`, entered at `key`; a hit in the cell the ray
+    /// is in at `placed_key` (where a walk placed at a key began, no
+    /// crossing) reports the crossing that entered that cell.
+    fn hit(
+        &self,
+        lanes: &Lanes,
+        key: Key,
+        pos: IVec3,
+        material: u8,
+        steps: u32,
+        placed_key: Key,
+    ) -> Traced {
+        let key = if key == placed_key {
+            lanes.entry_key_of(pos.as_vec3a())
+        } else {
+            key
+        };
+        let (face, t) = lanes.entry_at(key);
         let hit = Hit::from_palette(&self.palette, pos, face, t, material);
         Traced { hit, steps }
     }

@@ -14,7 +14,7 @@
 
 use glam::{BVec3A, IVec3, Vec3A};
 
-use crate::storage::walk::{Key, Walk};
+use crate::storage::walk::{latest, Key, Walk};
 
 /// Lane indices as floats, for the axis part of key comparisons.
 const LANE: Vec3A = Vec3A::new(0.0, 1.0, 2.0);
@@ -87,17 +87,7 @@ impl Walk {
         // entries, ties to the highest axis, as `Key::lt` orders them; a
         // start key off its plane is before everything); an axis that does
         // not move keeps its start.
-        let entries = Vec3A::select(moving, entry_t, Vec3A::NEG_INFINITY);
-        let latest = entries.max_element();
-        self.key = if latest == f32::NEG_INFINITY {
-            Key::BEFORE
-        } else {
-            let ties = entries.cmpeq(Vec3A::splat(latest)).bitmask();
-            Key {
-                t: latest,
-                axis: (u32::BITS - 1 - ties.leading_zeros()) as u8,
-            }
-        };
+        self.key = latest(Vec3A::select(moving, entry_t, Vec3A::NEG_INFINITY));
         self.cell = pick(moving, c.as_ivec3(), self.cell);
         Some(true)
     }
@@ -105,56 +95,8 @@ impl Walk {
 
 #[cfg(test)]
 mod tests {
-    use glam::{IVec3, Vec3};
-
-    use crate::geom::{IAabb, Ray};
+    use crate::storage::walk::test_rays::Rng;
     use crate::storage::walk::{Key, Walk};
-
-    /// A small deterministic generator (xorshift64*), so failures repeat.
-    struct Rng(u64);
-
-    impl Rng {
-        fn next(&mut self) -> u64 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-        }
-        fn unit(&mut self) -> f32 {
-            (self.next() >> 40) as f32 / (1u64 << 24) as f32
-        }
-        fn range(&mut self, lo: f32, hi: f32) -> f32 {
-            lo + (hi - lo) * self.unit()
-        }
-        fn int(&mut self, lo: i32, hi: i32) -> i32 {
-            lo + (self.next() % (hi - lo) as u64) as i32
-        }
-    }
-
-    /// A coordinate that is often an integer or a half, as rays of a
-    /// renderer on grid cameras are.
-    fn coordinate(rng: &mut Rng, span: f32) -> f32 {
-        match rng.next() % 4 {
-            0 => rng.range(-span, span).round(),
-            1 => rng.range(-span, span).round() + 0.5,
-            _ => rng.range(-span, span),
-        }
-    }
-
-    fn direction(rng: &mut Rng) -> Vec3 {
-        let mut d = Vec3::new(
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
-        );
-        // Axis-aligned and diagonal rays, where ties and idle axes live.
-        match rng.next() % 6 {
-            0 => d[(rng.next() % 3) as usize] = 0.0,
-            1 => d = Vec3::new(1.0, 1.0, 1.0) * d.signum(),
-            _ => {}
-        }
-        d
-    }
 
     /// Keys at and after the walk's entry: random times, and the exact
     /// crossing times of planes on every axis (ties with every lane).
@@ -182,18 +124,8 @@ mod tests {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
         let (mut decided, mut cases) = (0u32, 0u32);
         while cases < 60_000 {
-            let lo = IVec3::new(rng.int(-40, 0), rng.int(-40, 0), rng.int(-40, 0));
-            let size = IVec3::new(rng.int(1, 40), rng.int(1, 40), rng.int(1, 40));
-            let bounds = IAabb {
-                min: lo,
-                max: lo + size,
-            };
-            let origin = Vec3::new(
-                coordinate(&mut rng, 60.0),
-                coordinate(&mut rng, 60.0),
-                coordinate(&mut rng, 60.0),
-            );
-            let Ok(ray) = Ray::new(origin, direction(&mut rng)) else {
+            let bounds = rng.bounds();
+            let Some(ray) = rng.ray() else {
                 continue;
             };
             let Some(walk) = Walk::start(&ray, &bounds) else {

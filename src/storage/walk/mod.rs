@@ -15,7 +15,7 @@
 //! The walk's state after any number of steps is exactly "the cell reached
 //! after processing every crossing in key order up to the current one". The
 //! dense backend steps one cell at a time. The octree moves from box to box:
-//! [`Walk::exit_of`] is the key at which the ray leaves an empty box (the
+//! `Walk::exit_of` is the key at which the ray leaves an empty box (the
 //! earliest of its far-plane crossings, which single steps would also reach
 //! there), and the octree's `Lanes::upper_sides` says which half of a box
 //! the ray is in at a key, from the same crossings, the same start rule and
@@ -34,14 +34,16 @@
 //! the walk stops once it leaves the volume, so a walk takes at most
 //! `size.x + size.y + size.z` moves ([`max_steps`]).
 
-use glam::{BVec3, IVec3, Vec3, Vec3A};
+use glam::{IVec3, Vec3, Vec3A};
 
 use crate::geom::{Face, IAabb};
 
 mod guess;
 mod start;
+#[cfg(test)]
+pub(crate) mod test_rays;
 
-pub(crate) use start::{start_rule, EXACT};
+pub(crate) use start::{directions, exact_start, start_lanes, start_rule, EXACT};
 
 /// A crossing's place in the ray's visiting order: by time, then by axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -92,6 +94,23 @@ fn earliest(t: Vec3) -> Key {
     }
 }
 
+/// The latest of three keys, one per axis lane (times `t`), ties to the
+/// highest axis as [`Key::lt`] orders them; all `-inf` is before
+/// everything.
+#[inline]
+pub(crate) fn latest(t: Vec3A) -> Key {
+    let latest = t.max_element();
+    if latest == f32::NEG_INFINITY {
+        Key::BEFORE
+    } else {
+        let ties = t.cmpeq(Vec3A::splat(latest)).bitmask();
+        Key {
+            t: latest,
+            axis: (u32::BITS - 1 - ties.leading_zeros()) as u8,
+        }
+    }
+}
+
 /// A ray's walk through the cells of one volume.
 #[derive(Clone, Debug)]
 pub(crate) struct Walk {
@@ -101,9 +120,6 @@ pub(crate) struct Walk {
     inv_dir: Vec3A,
     /// +1, -1, or 0 for an axis the ray does not move along.
     step: IVec3,
-    /// Lanes of `step` that are +1, and that are not 0.
-    up: BVec3,
-    moving: BVec3,
     /// The cell the ray is in just after t = 0.
     start: IVec3,
     /// Key of the crossing into `start` on each axis: `(0, axis)` when the
@@ -205,24 +221,17 @@ impl Walk {
     /// The first crossing out of the box `[lo, hi)` for a ray that is
     /// inside it: the earliest key among the far planes of the moving axes
     /// (`+inf` if none is ever reached). The same arithmetic as single steps,
-    /// on three lanes at once.
-    #[inline]
+    /// on three lanes at once: the definition the octree's four-lane
+    /// `Lanes::exit_of` is tested against.
+    #[cfg(test)]
     pub(crate) fn exit_of(&self, lo: IVec3, hi: IVec3) -> Key {
-        let far = IVec3::select(self.up, hi, lo).as_vec3a();
+        let far = IVec3::select(self.step.cmpgt(IVec3::ZERO), hi, lo).as_vec3a();
         let t = Vec3::select(
-            self.moving,
+            self.step.cmpne(IVec3::ZERO),
             ((far - self.origin) * self.inv_dir).into(),
             Vec3::INFINITY,
         );
         earliest(t)
-    }
-
-    /// The ray's origin, reciprocal direction, start cell and per-axis
-    /// steps (+1, -1, or 0): what a caller needs to ask the walk's
-    /// questions in another form (the octree's four-lane `Lanes`).
-    #[inline]
-    pub(crate) fn parts(&self) -> (Vec3A, Vec3A, IVec3, IVec3) {
-        (self.origin, self.inv_dir, self.start, self.step)
     }
 
     /// Steps to the next cell. Returns `false` when the ray leaves the volume

@@ -41,8 +41,6 @@ impl Walk {
             cell: start,
             key: Key::BEFORE,
             steps: 0,
-            up: step.cmpgt(IVec3::ZERO),
-            moving: step.cmpne(IVec3::ZERO),
         }
     }
 
@@ -291,7 +289,7 @@ pub(crate) fn start_rule(ray: &Ray) -> ([i32; 3], [i32; 3], [Key; 3]) {
 /// subnormal component) would turn a crossing at distance 0 into NaN; such
 /// an axis never reaches a plane in f32 anyway, so it counts as not moving.
 #[inline]
-fn directions(ray: &Ray) -> (BVec3A, BVec3A) {
+pub(crate) fn directions(ray: &Ray) -> (BVec3A, BVec3A) {
     let (_, dir, inv_dir) = ray.lanes();
     let finite_inv = inv_dir.abs().cmplt(Vec3A::INFINITY);
     let moving = dir.cmpne(Vec3A::ZERO) & finite_inv;
@@ -309,10 +307,9 @@ pub(crate) const EXACT: f32 = 8_388_608.0;
 /// The start rule on three lanes: the steps, the start cell, and the axes
 /// whose entry plane the origin lies on.
 #[inline]
-fn start_lanes(ray: &Ray) -> (IVec3, IVec3, BVec3A) {
+pub(crate) fn start_lanes(ray: &Ray) -> (IVec3, IVec3, BVec3A) {
     let (origin, _, _) = ray.lanes();
     let (up, down) = directions(ray);
-    let moving = up | down;
     let ones = |mask: BVec3A| {
         let bits = mask.bitmask();
         IVec3::new(
@@ -321,23 +318,33 @@ fn start_lanes(ray: &Ray) -> (IVec3, IVec3, BVec3A) {
             (bits >> 2) as i32,
         )
     };
-    // The start cell's entry plane is floor(o) moving up, ceil(o) moving
-    // down: the origin lies on it exactly when it is an integer, and then a
-    // ray moving down starts in the cell below.
     let steps = ones(up) - ones(down);
-    if origin.abs().cmplt(Vec3A::splat(EXACT)).all() {
-        // The common case, on float lanes: below 2^23 the floor, and one
-        // less, are exact floats of exact integers.
-        let floor = origin.floor();
-        let on_plane = moving & floor.cmpeq(origin);
-        let below = Vec3A::select(on_plane & down, Vec3A::ONE, Vec3A::ZERO);
-        return (steps, (floor - below).as_ivec3(), on_plane);
+    if let Some((start, on_plane)) = exact_start(origin, up, down) {
+        return (steps, start.as_ivec3(), on_plane);
     }
     // Truncation saturates as `floor_cell` does (saturated cells of huge
     // origins lie outside every volume).
     let truncated = origin.as_ivec3();
     let floor = truncated.saturating_sub(ones(truncated.as_vec3a().cmpgt(origin)));
-    let on_plane = moving & floor.as_vec3a().cmpeq(origin);
+    let on_plane = (up | down) & floor.as_vec3a().cmpeq(origin);
     let start = floor.saturating_sub(ones(on_plane & down));
     (steps, start, on_plane)
+}
+
+/// The start cell and the axes whose entry plane the origin lies on, on
+/// float lanes, for an origin below 2^23 on every axis (else `None`):
+/// there the floor, and one less, are exact floats of exact integers.
+/// `up` and `down` are the axes the ray moves along each way.
+#[inline]
+pub(crate) fn exact_start(origin: Vec3A, up: BVec3A, down: BVec3A) -> Option<(Vec3A, BVec3A)> {
+    if !origin.abs().cmplt(Vec3A::splat(EXACT)).all() {
+        return None;
+    }
+    // The start cell's entry plane is floor(o) moving up, ceil(o) moving
+    // down: the origin lies on it exactly when it is an integer, and then a
+    // ray moving down starts in the cell below.
+    let floor = origin.floor();
+    let on_plane = (up | down) & floor.cmpeq(origin);
+    let below = Vec3A::select(on_plane & down, Vec3A::ONE, Vec3A::ZERO);
+    Some((floor - below, on_plane))
 }
