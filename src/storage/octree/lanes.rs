@@ -6,7 +6,7 @@
 use glam::{BVec3A, Vec3A};
 
 use crate::geom::{Face, Ray};
-use crate::storage::octree::grid::pow2;
+use crate::storage::octree::grid::{pow2, AXES};
 #[cfg(doc)]
 use crate::storage::walk::Walk;
 use crate::storage::walk::{directions, exact_start, latest, start_lanes, Key};
@@ -140,6 +140,14 @@ impl Lanes {
             z
         };
         Key { t, axis }
+    }
+
+    /// The cube of side `side` next to the one at `cube` (exact floats)
+    /// across its far plane on `axis`, the one an exit on that axis enters.
+    #[inline]
+    pub(crate) fn neighbour(&self, cube: Vec3A, side: f32, axis: u8) -> Vec3A {
+        let on_axis = AXES.cmpeq(Vec3A::splat(f32::from(axis)));
+        cube + Vec3A::select(on_axis, self.step * side, Vec3A::ZERO)
     }
 
     /// For each axis, whether the cell the walk is in just after crossing

@@ -21,15 +21,26 @@ use glam::{IVec3, Vec3A};
 use crate::frustum::Frustum;
 use crate::geom::{IAabb, Ray};
 use crate::scene::{Hit, Scene, StartSeen, Traced, WalkMemory};
-use crate::storage::octree::grid::{changed_bits, cube_at, pow2, spread, whole, AXES};
+use crate::storage::octree::grid::{changed_bits, cube_at, pow2, spread, whole};
 use crate::storage::octree::lanes::Lanes;
 use crate::storage::octree::memory::{Begun, PATH};
-use crate::storage::octree::{child_rank, BrickMaterials, Node, NodeKind, OctreeScene};
+use crate::storage::octree::{child_rank, BrickMaterials, Node, NodeKind, OctreeScene, BRICK};
 use crate::storage::walk::{Key, Walk};
 
 /// The visitor of every trace but the debug view's: never stops the walk.
 fn keep_walking(_: IAabb) -> bool {
     true
+}
+
+/// The cube of side 2^log at the corner `cube` (exact floats) as the box
+/// a visitor is shown.
+#[inline]
+fn cube_box(cube: Vec3A, log: u32) -> IAabb {
+    let low = cube.as_ivec3();
+    IAabb {
+        min: low,
+        max: low + (1 << log),
+    }
 }
 
 /// Occupancy bits of the 2x2x2 group at the brick's local origin: `x | y << 2
@@ -199,7 +210,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         loop {
             // Down from `depth` to the deepest node holding the position;
             // the empty cube found there, its corner and log2 of its side.
-            let (cube, empty_log) = loop {
+            let (cube, empty_log) = 'descent: loop {
                 match node.0 {
                     NodeKind::Branch { children, first } => {
                         let half_log = root_log - depth as u32 - 1;
@@ -236,48 +247,61 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                     NodeKind::Brick {
                         occupancy,
                         materials,
-                    } => {
+                    } => loop {
                         let (group, upper) =
                             lanes.half_of(key, node_at, 1, &mut at, &mut known_log);
                         let group_bit = spread(upper) << 1;
-                        if occupancy & GROUP << group_bit == 0 {
-                            break (group, 1);
+                        let (cube, log) = if occupancy & GROUP << group_bit == 0 {
+                            (group, 1)
+                        } else {
+                            let (cell, upper) =
+                                lanes.half_of(key, group, 0, &mut at, &mut known_log);
+                            let bit = group_bit | spread(upper);
+                            if occupancy >> bit & 1 != 0 {
+                                let material = self.brick_material(occupancy, materials, bit);
+                                end!(
+                                    cell,
+                                    self.hit(
+                                        &lanes,
+                                        key,
+                                        min + whole((cell - min_f).into()),
+                                        material,
+                                        steps,
+                                        placed_key
+                                    )
+                                );
+                            }
+                            (cell, 0)
+                        };
+                        // A move to another group or voxel of the brick,
+                        // before both limits, is taken here: the brick
+                        // still holds the position. Else the general move.
+                        let side = pow2(log);
+                        let exit = lanes.exit_of(cube, cube + side);
+                        let next = lanes.neighbour(cube, side, exit.axis);
+                        let in_brick = next.cmpge(node_at) & next.cmplt(node_at + BRICK as f32);
+                        if !(exit.t < stays_before && in_brick.all()) {
+                            break 'descent (cube, log);
                         }
-                        let (cell, upper) = lanes.half_of(key, group, 0, &mut at, &mut known_log);
-                        let bit = group_bit | spread(upper);
-                        if occupancy >> bit & 1 == 0 {
-                            break (cell, 0);
+                        steps += 1;
+                        if !visit(cube_box(cube, log)) {
+                            end!(cube, Traced { hit: None, steps });
                         }
-                        let material = self.brick_material(occupancy, materials, bit);
-                        end!(
-                            cell,
-                            self.hit(
-                                &lanes,
-                                key,
-                                min + whole((cell - min_f).into()),
-                                material,
-                                steps,
-                                placed_key
-                            )
-                        );
-                    }
+                        at = next;
+                        known_log = log;
+                        key = exit;
+                    },
                 }
             };
             // Leave the empty cube through its first far-plane crossing.
             let side = pow2(empty_log);
             let exit = lanes.exit_of(cube, cube + side);
             steps += 1;
-            let low = cube.as_ivec3();
-            let empty = IAabb {
-                min: low,
-                max: low + (1 << empty_log),
-            };
-            if !visit(empty) {
+            if !visit(cube_box(cube, empty_log)) {
                 end!(cube, Traced { hit: None, steps });
             }
             let axis = exit.axis as usize;
-            let on_axis = AXES.cmpeq(Vec3A::splat(f32::from(exit.axis)));
-            let next = cube + Vec3A::select(on_axis, lanes.step * side, Vec3A::ZERO);
+            let next = lanes.neighbour(cube, side, exit.axis);
             // A crossing before both the caller's reach and the region's
             // exit stays inside: on the exit's own axis too, since crossing
             // times grow with the plane. Else the slower questions.
