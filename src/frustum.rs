@@ -20,12 +20,47 @@ pub struct Frustum {
     /// How far (radians, small-angle) the planes are widened: a direction
     /// up to this much outside a plane still counts as inside.
     pub slack: f32,
+    /// For each axis, a bound on that component's size for the unit
+    /// direction of every ray through the quadrilateral, turned by up to
+    /// the slack; at most 1, and all ones is always true. A ray that gets
+    /// `g` away from the apex along an axis has gone at least
+    /// `g / steepest` along itself.
+    pub steepest: Vec3,
 }
 
 /// The least slack of the side-plane tests, relative to the distance from
 /// the apex: normals and box corners are rounded to about 1e-7 of their
 /// length, and this is a hundred times that.
 const SLACK: f32 = 2e-5;
+
+/// For each axis, a bound on that component's size for every unit direction
+/// through the quadrilateral with the given corners, turned by up to `turn`
+/// radians, at most 1. A point `p` of the quadrilateral is a mean of its
+/// corners with nonnegative weights: no component is larger than the
+/// corners' largest, and against the unit direction `w` of the corners'
+/// mean, `|p| >= p . w`, which is linear, so at least the corners' least.
+/// Turning a unit vector moves each component by at most the angle. Only
+/// corners are used, never the planes: where rounding leaves a tiny tile's
+/// planes meaningless (and the slack alone keeps the frustum's test true),
+/// the corners still bound the rays.
+fn steepest(corners: [Vec3; 4], turn: f32) -> Vec3 {
+    let Some(w) = (corners[0] + corners[1] + corners[2] + corners[3]).try_normalize() else {
+        return Vec3::ONE;
+    };
+    let nearest = corners
+        .iter()
+        .map(|c| c.dot(w))
+        .fold(f32::INFINITY, f32::min);
+    let largest = corners.iter().fold(Vec3::ZERO, |m, c| m.max(c.abs()));
+    let bound = largest / nearest + Vec3::splat(turn);
+    // Also when a corner lies behind the apex or nothing is finite (then
+    // the comparisons fail): nothing is known.
+    if nearest > 0.0 && bound.is_finite() {
+        bound.min(Vec3::ONE)
+    } else {
+        Vec3::ONE
+    }
+}
 
 impl Frustum {
     /// The frustum of the rays from `apex` through the quadrilateral whose
@@ -63,6 +98,7 @@ impl Frustum {
             apex,
             normals,
             slack,
+            steepest: steepest(corners, slack),
         })
     }
 
@@ -76,5 +112,88 @@ impl Frustum {
             let corner = Vec3::select(n.cmpge(Vec3::ZERO), max, min) - self.apex;
             n.dot(corner) >= -self.slack * corner.abs().element_sum()
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+    use proptest::prelude::*;
+
+    use super::Frustum;
+
+    fn unit() -> impl Strategy<Value = Vec3> {
+        (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0)
+            .prop_filter_map("not a direction", |(x, y, z)| {
+                Vec3::new(x, y, z).try_normalize()
+            })
+    }
+
+    /// A frustum through a jittered rectangle around `view`, of half-size
+    /// up to `spread` in the image plane at distance 1.
+    fn frustum_around(view: Vec3, jitter: [f32; 8], spread: f32, stray: f32) -> Option<Frustum> {
+        let u = view.any_orthonormal_vector();
+        let v = view.cross(u);
+        let signs = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+        let corners = core::array::from_fn(|k| {
+            let (su, sv) = signs[k];
+            view + u * (su * spread * jitter[2 * k]) + v * (sv * spread * jitter[2 * k + 1])
+        });
+        Frustum::through(Vec3::new(3.0, -7.0, 11.0), corners, stray)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2000))]
+
+        /// Every direction through the quadrilateral, turned by up to the
+        /// slack, has components within the bounds; for a narrow frustum
+        /// the bounds are close to the corners' own components.
+        #[test]
+        fn direction_bounds_hold_every_direction_inside(
+            view in unit(),
+            jitter in proptest::array::uniform8(0.2f32..1.0),
+            spread in 1e-4f32..1.5,
+            stray in 0.0f32..1e-3,
+            weights in proptest::array::uniform4(0.0f32..1.0),
+            turn in unit(),
+        ) {
+            let Some(frustum) = frustum_around(view, jitter, spread, stray) else {
+                return Ok(());
+            };
+            let bounds = frustum.steepest;
+            prop_assert!(bounds.cmple(Vec3::ONE).all() && bounds.cmpgt(Vec3::ZERO).all());
+            // The corners' directions.
+            let u = view.any_orthonormal_vector();
+            let v = view.cross(u);
+            let signs = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+            let corners: [Vec3; 4] = core::array::from_fn(|k| {
+                let (su, sv) = signs[k];
+                (view + u * (su * spread * jitter[2 * k]) + v * (sv * spread * jitter[2 * k + 1]))
+                    .normalize()
+            });
+            let inside = corners
+                .iter()
+                .zip(weights)
+                .fold(Vec3::ZERO, |sum, (c, w)| sum + *c * w);
+            let Some(inside) = inside.try_normalize() else {
+                return Ok(());
+            };
+            // Turned by at most the slack (the chord is shorter than the
+            // angle).
+            let turned = (inside + turn * frustum.slack).normalize();
+            for d in [inside, turned] {
+                prop_assert!(
+                    d.abs().cmple(bounds + 1e-6).all(),
+                    "direction {d} outside the bounds {bounds}"
+                );
+            }
+            if spread < 0.05 {
+                let largest = corners.iter().fold(Vec3::ZERO, |m, c| m.max(c.abs()));
+                prop_assert!(
+                    bounds.cmple(largest + 0.01).all(),
+                    "bounds {bounds} loose against the corners' {largest}"
+                );
+            }
+        }
     }
 }

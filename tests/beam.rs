@@ -231,6 +231,37 @@ fn a_clear_frustum_skips_the_empty_space_before_the_surface() {
 }
 
 #[test]
+fn a_clear_frustum_toward_the_horizon_reaches_most_of_the_way_to_its_hits() {
+    // Looking far across a floor from 8 above: the floor's nearest point is
+    // 8 away, straight below, but the tile's rays meet it only about 60
+    // away. The clear distance counts how far rays this shallow must go to
+    // get 8 lower, not how far the floor is.
+    let floor = voxtrace::FnSource::new(common::sources::palette(1), |p: voxtrace::glam::IVec3| {
+        u8::from(p.y < 0)
+    });
+    let bounds = IAabb::centered(64);
+    let scene = OctreeScene::build(&floor, bounds).unwrap();
+    let camera = camera(
+        64,
+        64,
+        Vec3::new(0.5, 8.0, 0.5),
+        Vec3::new(0.5, 0.0, 60.5),
+        10.0,
+    )
+    .unwrap();
+    let (x0, y0, x1, y1) = (28, 28, 36, 36);
+    let t0 = scene.clear_distance(&camera.tile_frustum(x0, y0, x1, y1).unwrap());
+    let nearest = (y0..y1)
+        .flat_map(|y| (x0..x1).map(move |x| (x, y)))
+        .filter_map(|(x, y)| scene.trace(&camera.get_ray(x, y)).map(|hit| hit.t))
+        .fold(f32::INFINITY, f32::min);
+    assert!(
+        nearest.is_finite() && t0 <= nearest && t0 >= 0.8 * nearest,
+        "clear distance {t0}, nearest hit {nearest}"
+    );
+}
+
+#[test]
 fn extreme_cameras_and_spans_render_without_panics() {
     let scene = OctreeScene::build(&speckle(3, 30), IAabb::centered(8)).unwrap();
     let options = voxtrace::RenderOptions::default();

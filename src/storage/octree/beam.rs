@@ -2,9 +2,11 @@
 //!
 //! Every ray of a tile lies in a frustum from the camera (`Frustum`).
 //! Visiting the nodes that may meet that frustum nearest first, the
-//! smallest distance from the apex to a non-empty box bounds every ray's
-//! hit from below: a ray enters a voxel on its boundary, and the voxel lies
-//! in the box. The rays
+//! smallest distance a ray of the frustum must go to reach a non-empty box
+//! bounds every ray's hit from below: a ray enters a voxel on its boundary,
+//! and the voxel lies in the box. That distance is at least the box's from
+//! the apex, and at least its gap on an axis over the steepest the
+//! frustum's rays run along that axis. The rays
 //! then start their exact walks there (`Walk::place_from`) and find the same
 //! hit as from the camera, without repeating the descent through the empty
 //! space the whole tile shares (the idea of Laine & Karras 2010, section 5).
@@ -163,16 +165,25 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         best
     }
 
-    /// The distance from the frustum's apex to the cube `[corner, corner +
-    /// side)` clipped to the occupied box, if the cube may meet the frustum and
-    /// is closer than `best`.
+    /// How far along itself a ray of the frustum has gone, at least, when it
+    /// reaches the cube `[corner, corner + side)` clipped to the occupied
+    /// box, if the cube may meet the frustum and that is closer than `best`:
+    /// the distance from the apex to the box, or, when larger, the gap to
+    /// the box on one axis over the largest component a ray of the frustum
+    /// has on it ([`Frustum::steepest`]). The second
+    /// bound is what keeps a wide box the frustum meets only far away, such
+    /// as the solid ground straight below a camera looking at the horizon,
+    /// from counting at its nearest point.
     fn reach(&self, frustum: &Frustum, corner: IVec3, side: i32, best: f32) -> Option<f32> {
         let cube = IAabb::new(corner, corner + side).intersect(&self.occupied);
         if cube.is_empty() {
             return None;
         }
         let (lo, hi) = (cube.min.as_vec3(), cube.max.as_vec3());
-        let distance = distance_to_box(frustum.apex, lo, hi);
+        let gap = (lo - frustum.apex).max(frustum.apex - hi).max(Vec3::ZERO);
+        // (`steepest` is at least the slack, never 0.)
+        let along = (gap / frustum.steepest).max_element();
+        let distance = distance_to_box(frustum.apex, lo, hi).max(along);
         if distance >= best {
             return None;
         }
