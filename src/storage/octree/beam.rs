@@ -170,10 +170,10 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// box, if the cube may meet the frustum and that is closer than `best`:
     /// the distance from the apex to the box, or, when larger, the gap to
     /// the box on one axis over the largest component a ray of the frustum
-    /// has on it ([`Frustum::steepest`]). The second
-    /// bound is what keeps a wide box the frustum meets only far away, such
-    /// as the solid ground straight below a camera looking at the horizon,
-    /// from counting at its nearest point.
+    /// has on it ([`Frustum::steepest`]). The second bound keeps a wide box
+    /// that the frustum meets only far away, such as the solid ground
+    /// straight below a camera looking at the horizon, from counting at its
+    /// nearest point.
     fn reach(&self, frustum: &Frustum, corner: IVec3, side: i32, best: f32) -> Option<f32> {
         let cube = IAabb::new(corner, corner + side).intersect(&self.occupied);
         if cube.is_empty() {
@@ -181,7 +181,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         }
         let (lo, hi) = (cube.min.as_vec3(), cube.max.as_vec3());
         let gap = (lo - frustum.apex).max(frustum.apex - hi).max(Vec3::ZERO);
-        // (`steepest` is at least the slack, never 0.)
+        // (`Frustum::through` makes `steepest` at least the slack: no 0/0.)
         let along = (gap / frustum.steepest).max_element();
         let distance = distance_to_box(frustum.apex, lo, hi).max(along);
         if distance >= best {
