@@ -190,14 +190,20 @@ impl Ray {
     }
 }
 
-/// Euclidean distance from `point` to the box `[min, max]` (0 inside it),
-/// past `f32::MAX` given as `f32::MAX`.
+/// Per axis, how far `point` lies outside the box `[min, max]`'s slab on
+/// that axis (0 within it): the box's Euclidean distance is its length.
 #[must_use]
-pub(crate) fn distance_to_box(point: Vec3, min: Vec3, max: Vec3) -> f32 {
-    let outside = (min - point).max(point - max).max(Vec3::ZERO);
+pub(crate) fn gap_to_box(point: Vec3, min: Vec3, max: Vec3) -> Vec3 {
+    (min - point).max(point - max).max(Vec3::ZERO)
+}
+
+/// The Euclidean length of a box's `gap` ([`gap_to_box`]), past `f32::MAX`
+/// given as `f32::MAX`.
+#[must_use]
+pub(crate) fn gap_length(gap: Vec3) -> f32 {
     // Past about 1.8e19 the squared length overflows; the largest finite
     // value is then still below the distance, which is all callers need.
-    sqrt32(outside.dot(outside)).min(f32::MAX)
+    sqrt32(gap.dot(gap)).min(f32::MAX)
 }
 
 /// One of the six faces of a voxel, named by its outward normal.

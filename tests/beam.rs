@@ -209,15 +209,19 @@ proptest! {
     }
 }
 
+/// The octree of `[-half, half)^3` solid below `y = 0`.
+fn floor(half: i32) -> impl Scene {
+    let floor = voxtrace::FnSource::new(common::sources::palette(1), |p: voxtrace::glam::IVec3| {
+        u8::from(p.y < 0)
+    });
+    OctreeScene::build(&floor, IAabb::centered(half)).unwrap()
+}
+
 #[test]
 fn a_clear_frustum_skips_the_empty_space_before_the_surface() {
     // Not only conservative but useful: looking down at a floor from 20
     // above, the tile's clear distance is most of the way there.
-    let floor = voxtrace::FnSource::new(common::sources::palette(1), |p: voxtrace::glam::IVec3| {
-        u8::from(p.y < 0)
-    });
-    let bounds = IAabb::centered(16);
-    let scene = OctreeScene::build(&floor, bounds).unwrap();
+    let scene = floor(16);
     let camera = camera(
         16,
         16,
@@ -236,11 +240,7 @@ fn a_clear_frustum_toward_the_horizon_reaches_most_of_the_way_to_its_hits() {
     // 8 away, straight below, but the tile's rays meet it only about 60
     // away. The clear distance counts how far rays this shallow must go to
     // get 8 lower, not how far the floor is.
-    let floor = voxtrace::FnSource::new(common::sources::palette(1), |p: voxtrace::glam::IVec3| {
-        u8::from(p.y < 0)
-    });
-    let bounds = IAabb::centered(64);
-    let scene = OctreeScene::build(&floor, bounds).unwrap();
+    let scene = floor(64);
     let camera = camera(
         64,
         64,

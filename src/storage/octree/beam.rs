@@ -18,7 +18,7 @@
 use glam::{IVec3, Vec3};
 
 use crate::frustum::Frustum;
-use crate::geom::{distance_to_box, IAabb};
+use crate::geom::{gap_length, gap_to_box, IAabb};
 use crate::math::floor_cell;
 use crate::storage::octree::{brick_bit, child_offset, child_rank, Node, NodeKind, OctreeScene};
 
@@ -180,10 +180,10 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             return None;
         }
         let (lo, hi) = (cube.min.as_vec3(), cube.max.as_vec3());
-        let gap = (lo - frustum.apex).max(frustum.apex - hi).max(Vec3::ZERO);
+        let gap = gap_to_box(frustum.apex, lo, hi);
         // (`Frustum::through` makes `steepest` at least the slack: no 0/0.)
         let along = (gap / frustum.steepest).max_element();
-        let distance = distance_to_box(frustum.apex, lo, hi).max(along);
+        let distance = gap_length(gap).max(along);
         if distance >= best {
             return None;
         }
