@@ -103,7 +103,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         loop {
             if let Some((node, corner, log)) = visit.take() {
                 if let Some(distance) = self.reach(frustum, min + corner, 1 << log, best) {
-                    match node.0 {
+                    match node.kind() {
                         NodeKind::Solid(_) => best = distance,
                         NodeKind::Brick { occupancy, .. } => {
                             best =

@@ -139,7 +139,7 @@ pub(crate) fn shortcut<S: VoxelSource + ?Sized>(
     match source.classify(region) {
         Region::Empty => Cube::Decided(None),
         Region::Solid(m) if m != 0 && region == cube => {
-            Cube::Decided(Some(Node(NodeKind::Solid(m))))
+            Cube::Decided(Some(Node::of(NodeKind::Solid(m))))
         }
         _ => Cube::Open(region),
     }
@@ -244,18 +244,18 @@ impl<'s, S: VoxelSource + ?Sized, K: Sink> Builder<'s, S, K> {
                 materials: BrickMaterials::Packed(self.sink.push_materials(solid)?),
             }
         };
-        Ok(Some(Node(node)))
+        Ok(Some(Node::of(node)))
     }
 
     /// Merges eight children: all empty stays empty, eight equal solids
     /// become one solid, anything else a branch over its stored children.
     pub(crate) fn combine(&mut self, children: &[Option<Node>; 8]) -> Result<Option<Node>, Error> {
-        if let Some(Node(NodeKind::Solid(m))) = children[0] {
+        if let Some(NodeKind::Solid(m)) = children[0].map(Node::kind) {
             if children
                 .iter()
-                .all(|c| *c == Some(Node(NodeKind::Solid(m))))
+                .all(|c| *c == Some(Node::of(NodeKind::Solid(m))))
             {
-                return Ok(Some(Node(NodeKind::Solid(m))));
+                return Ok(Some(Node::of(NodeKind::Solid(m))));
             }
         }
         let mut mask = 0u8;
@@ -272,7 +272,7 @@ impl<'s, S: VoxelSource + ?Sized, K: Sink> Builder<'s, S, K> {
             return Ok(None);
         }
         let first = self.sink.push_nodes(&stored[..count])?;
-        Ok(Some(Node(NodeKind::Branch {
+        Ok(Some(Node::of(NodeKind::Branch {
             children: mask,
             first,
         })))

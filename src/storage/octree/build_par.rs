@@ -135,7 +135,7 @@ fn append(sink: &mut VecSink, root: Option<Node>, part: VecSink) -> Result<Optio
     let material_shift = to_u32(sink.materials.len())?;
     let shift = |node: Node| -> Result<Node, Error> {
         let add = |index: u32, by: u32| index.checked_add(by).ok_or(Error::SizeOverflow);
-        Ok(Node(match node.0 {
+        Ok(Node::of(match node.kind() {
             NodeKind::Branch { children, first } => NodeKind::Branch {
                 children,
                 first: add(first, node_shift)?,

@@ -160,7 +160,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let nodes = self.nodes.as_ref();
         let root_log = self.root_size.trailing_zeros();
         let material = loop {
-            match node.0 {
+            match node.kind() {
                 NodeKind::Branch { children, first } => {
                     let half_log = root_log - depth as u32 - 1;
                     let upper = (corner >> half_log) & 1;

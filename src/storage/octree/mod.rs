@@ -34,23 +34,29 @@ pub(crate) fn brick_bit(local: IVec3) -> u32 {
     (local.x | local.y << 2 | local.z << 4) as u32
 }
 
-/// `ONES[m]` is `m.count_ones()`: a child's rank in one load, where the
-/// target has no popcount instruction.
-const ONES: [u8; 256] = {
-    let mut ones = [0; 256];
+/// `RANK[m][i]` is the number of bits of `m` below bit `i`: a child's rank
+/// in one load, where the target has no popcount instruction and the mask
+/// below the octant would take four more (2 KiB, shared by every walk).
+const RANK: [[u8; 8]; 256] = {
+    let mut rank = [[0; 8]; 256];
     let mut m = 0;
     while m < 256 {
-        ones[m] = (m as u32).count_ones() as u8;
+        let mut i = 0;
+        while i < 8 {
+            rank[m][i] = ((m as u32) & ((1 << i) - 1)).count_ones() as u8;
+            i += 1;
+        }
         m += 1;
     }
-    ones
+    rank
 };
 
-/// Where child `octant` of a branch with child mask `children` is stored,
-/// counted from the branch's first child: the present children before it.
+/// Where child `octant` (below 8) of a branch with child mask `children`
+/// is stored, counted from the branch's first child: the present children
+/// before it.
 #[inline]
 pub(crate) fn child_rank(children: u8, octant: u32) -> u32 {
-    u32::from(ONES[usize::from(children) & ((1 << octant) - 1)])
+    u32::from(RANK[usize::from(children)][octant as usize & 7])
 }
 
 /// Offset of child octant `i` in units of half a side, for the builders,
@@ -88,15 +94,94 @@ pub(crate) enum NodeKind {
 
 /// One octree node (16 bytes). Opaque: nodes are written only by the
 /// builders; the public type exists so callers can provide node buffers.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Node(pub(crate) NodeKind);
+///
+/// Stored as plain fields with an explicit kind byte rather than as a
+/// [`NodeKind`] (whose layout the compiler picks): the descent then tells
+/// a branch by one byte compare, where the enum's kind hid in a niche of
+/// the brick's material tag and took a subtraction and a conditional move
+/// to decode on every level. [`Node::of`] and [`Node::kind`] convert, and
+/// every field a kind does not use is zero, so equal kinds are equal
+/// nodes.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub struct Node {
+    /// A branch's child mask, a brick's occupancy; else 0.
+    mask: u64,
+    /// A branch's first child index, a packed brick's material offset;
+    /// else 0.
+    index: u32,
+    /// Which kind of node: one of the `TAG_` constants.
+    tag: u8,
+    /// A solid node's or a uniform brick's material; else 0.
+    material: u8,
+    /// Always 0.
+    unused: u16,
+}
+
+/// [`Node::tag`] of a branch.
+const TAG_BRANCH: u8 = 0;
+/// [`Node::tag`] of a solid node.
+const TAG_SOLID: u8 = 1;
+/// [`Node::tag`] of a brick with one material.
+const TAG_UNIFORM_BRICK: u8 = 2;
+/// [`Node::tag`] of a brick with packed materials.
+const TAG_PACKED_BRICK: u8 = 3;
 
 impl Node {
     /// A placeholder to initialize node buffers with (an empty branch).
-    pub const EMPTY: Node = Node(NodeKind::Branch {
+    pub const EMPTY: Node = Node::of(NodeKind::Branch {
         children: 0,
         first: 0,
     });
+
+    /// The node of `kind`.
+    #[inline]
+    pub(crate) const fn of(kind: NodeKind) -> Node {
+        let (mask, index, tag, material) = match kind {
+            NodeKind::Branch { children, first } => (children as u64, first, TAG_BRANCH, 0),
+            NodeKind::Solid(material) => (0, 0, TAG_SOLID, material),
+            NodeKind::Brick {
+                occupancy,
+                materials: BrickMaterials::Uniform(material),
+            } => (occupancy, 0, TAG_UNIFORM_BRICK, material),
+            NodeKind::Brick {
+                occupancy,
+                materials: BrickMaterials::Packed(offset),
+            } => (occupancy, offset, TAG_PACKED_BRICK, 0),
+        };
+        Node {
+            mask,
+            index,
+            tag,
+            material,
+            unused: 0,
+        }
+    }
+
+    /// What the node is.
+    #[inline(always)]
+    pub(crate) fn kind(self) -> NodeKind {
+        match self.tag {
+            TAG_BRANCH => NodeKind::Branch {
+                children: self.mask as u8,
+                first: self.index,
+            },
+            TAG_SOLID => NodeKind::Solid(self.material),
+            TAG_UNIFORM_BRICK => NodeKind::Brick {
+                occupancy: self.mask,
+                materials: BrickMaterials::Uniform(self.material),
+            },
+            _ => NodeKind::Brick {
+                occupancy: self.mask,
+                materials: BrickMaterials::Packed(self.index),
+            },
+        }
+    }
+}
+
+impl core::fmt::Debug for Node {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_tuple("Node").field(&self.kind()).finish()
+    }
 }
 
 const _: () = assert!(core::mem::size_of::<Node>() == 16);
@@ -202,7 +287,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// True when the volume holds no solid voxel.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        matches!(self.root.0, NodeKind::Branch { children: 0, .. })
+        matches!(self.root.kind(), NodeKind::Branch { children: 0, .. })
     }
 }
 
@@ -234,7 +319,7 @@ fn grow(node: Node, corner: IVec3, side: i32, nodes: &[Node], found: &mut IAabb)
         found.min = found.min.min(lo);
         found.max = found.max.max(hi);
     };
-    match node.0 {
+    match node.kind() {
         NodeKind::Solid(_) => take(corner, corner + side),
         NodeKind::Brick { occupancy, .. } => {
             let (mut lo, mut hi) = (IVec3::splat(BRICK), IVec3::ZERO);

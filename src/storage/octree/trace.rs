@@ -211,7 +211,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             // Down from `depth` to the deepest node holding the position;
             // the empty cube found there, its corner and log2 of its side.
             let (cube, empty_log) = 'descent: loop {
-                match node.0 {
+                match node.kind() {
                     NodeKind::Branch { children, first } => {
                         let half_log = root_log - depth as u32 - 1;
                         let (child, octant) =
