@@ -53,11 +53,15 @@ pub(super) fn cube_at(at: Vec3A, min: Vec3A, log: u32) -> Vec3A {
     Vec3A::from_array(lifted) - EXACT + min
 }
 
+/// `SPREAD[o]` is octant `o`'s bits spread to a brick's bit layout.
+const SPREAD: [u8; 8] = [0, 1, 4, 5, 16, 17, 20, 21];
+
 /// Octant bits `x | y << 1 | z << 2` spread to a brick's bit layout
-/// `x | y << 2 | z << 4`.
+/// `x | y << 2 | z << 4`: one load, where the shifts and masks take seven
+/// instructions on every move inside a brick.
 #[inline]
 pub(super) fn spread(octant: u32) -> u32 {
-    (octant & 1) | (octant & 2) << 1 | (octant & 4) << 2
+    u32::from(SPREAD[octant as usize & 7])
 }
 
 #[cfg(test)]
