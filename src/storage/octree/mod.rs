@@ -355,3 +355,51 @@ fn grow(node: Node, corner: IVec3, side: i32, nodes: &[Node], found: &mut IAabb)
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::{child_rank, BrickMaterials, Node, NodeKind};
+
+    /// Every kind a node can hold, from its raw parts.
+    fn kind(pick: u8, mask: u64, index: u32, material: u8) -> NodeKind {
+        match pick % 4 {
+            0 => NodeKind::Branch {
+                children: mask as u8,
+                first: index,
+            },
+            1 => NodeKind::Solid(material),
+            2 => NodeKind::Brick {
+                occupancy: mask,
+                materials: BrickMaterials::Uniform(material),
+            },
+            _ => NodeKind::Brick {
+                occupancy: mask,
+                materials: BrickMaterials::Packed(index),
+            },
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn a_node_holds_its_kind_and_equal_kinds_are_equal_nodes(
+            a in (any::<u8>(), any::<u64>(), any::<u32>(), any::<u8>()),
+            b in (any::<u8>(), any::<u64>(), any::<u32>(), any::<u8>()),
+        ) {
+            let (ka, kb) = (kind(a.0, a.1, a.2, a.3), kind(b.0, b.1, b.2, b.3));
+            prop_assert_eq!(Node::of(ka).kind(), ka);
+            prop_assert_eq!(Node::of(ka) == Node::of(kb), ka == kb);
+        }
+    }
+
+    #[test]
+    fn a_childs_rank_counts_the_present_children_before_it() {
+        for children in 0..=255u8 {
+            for octant in 0..8 {
+                let before = (0..octant).filter(|&o| children & (1 << o) != 0).count();
+                assert_eq!(child_rank(children, octant), before as u32);
+            }
+        }
+    }
+}
