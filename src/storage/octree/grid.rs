@@ -61,6 +61,7 @@ const SPREAD: [u8; 8] = [0, 1, 4, 5, 16, 17, 20, 21];
 /// instructions on every move inside a brick.
 #[inline]
 pub(super) fn spread(octant: u32) -> u32 {
+    debug_assert!(octant < 8, "octant {octant}");
     u32::from(SPREAD[octant as usize & 7])
 }
 

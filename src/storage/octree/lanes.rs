@@ -174,17 +174,18 @@ impl Lanes {
     /// position: its corner and octant (`x | y << 1 | z << 2`). A position
     /// known only to that cube (`known_log` above `half_log`) is narrowed to
     /// the half by the side of the midplanes the ray is on at `key`; a finer
-    /// one already lies in one half.
+    /// one already lies in one half. `half` is 2^half_log on every lane: the
+    /// descent carries it, halving it a level at a time.
     #[inline(always)]
     pub(crate) fn half_of(
         &self,
         key: Key,
         corner: Vec3A,
-        half_log: u32,
+        (half, half_log): (Vec3A, u32),
         at: &mut Vec3A,
         known_log: &mut u32,
     ) -> (Vec3A, u32) {
-        let half = Vec3A::splat(pow2(half_log));
+        debug_assert_eq!(half, Vec3A::splat(pow2(half_log)));
         let planes = corner + half;
         let narrow = *known_log > half_log;
         let upper = if narrow {

@@ -56,6 +56,7 @@ const RANK: [[u8; 8]; 256] = {
 /// before it.
 #[inline]
 pub(crate) fn child_rank(children: u8, octant: u32) -> u32 {
+    debug_assert!(octant < 8, "octant {octant}");
     u32::from(RANK[usize::from(children)][octant as usize & 7])
 }
 
@@ -95,13 +96,12 @@ pub(crate) enum NodeKind {
 /// One octree node (16 bytes). Opaque: nodes are written only by the
 /// builders; the public type exists so callers can provide node buffers.
 ///
-/// Stored as plain fields with an explicit kind byte rather than as a
-/// [`NodeKind`] (whose layout the compiler picks): the descent then tells
-/// a branch by one byte compare, where the enum's kind hid in a niche of
-/// the brick's material tag and took a subtraction and a conditional move
-/// to decode on every level. [`Node::of`] and [`Node::kind`] convert, and
-/// every field a kind does not use is zero, so equal kinds are equal
-/// nodes.
+/// Stored as plain fields with an explicit kind byte rather than as the
+/// crate's node enum (whose layout the compiler picks): the descent then
+/// tells a branch by one byte compare, where the enum's kind hid in a
+/// niche of the brick's material tag and took a subtraction and a
+/// conditional move to decode on every level. Every field a kind does not
+/// use is zero, so equal kinds are equal nodes.
 #[derive(Clone, Copy, PartialEq, Eq)]
 pub struct Node {
     /// A branch's child mask, a brick's occupancy; else 0.
@@ -384,10 +384,15 @@ mod tests {
     proptest! {
         #[test]
         fn a_node_holds_its_kind_and_equal_kinds_are_equal_nodes(
-            a in (any::<u8>(), any::<u64>(), any::<u32>(), any::<u8>()),
-            b in (any::<u8>(), any::<u64>(), any::<u32>(), any::<u8>()),
+            a in (any::<u8>(), 0..3u64, 0..3u32, 0..3u8),
+            b in (any::<u8>(), 0..3u64, 0..3u32, 0..3u8),
+            wide in (any::<u8>(), any::<u64>(), any::<u32>(), any::<u8>()),
         ) {
+            // Small parts, so that equal kinds come up often; wide ones for
+            // every bit of every field.
             let (ka, kb) = (kind(a.0, a.1, a.2, a.3), kind(b.0, b.1, b.2, b.3));
+            let kw = kind(wide.0, wide.1, wide.2, wide.3);
+            prop_assert_eq!(Node::of(kw).kind(), kw);
             prop_assert_eq!(Node::of(ka).kind(), ka);
             prop_assert_eq!(Node::of(ka) == Node::of(kb), ka == kb);
         }

@@ -47,6 +47,9 @@ fn cube_box(cube: Vec3A, log: u32) -> IAabb {
 /// | z << 4` for `x, y, z` in `{0, 1}`.
 const GROUP: u64 = 0x0033_0033;
 
+/// The half side of a brick (2) on every lane.
+const TWO: Vec3A = Vec3A::splat(2.0);
+
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
     fn bounds(&self) -> IAabb {
         self.bounds
@@ -198,6 +201,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             placed_key,
         } = begun;
         let path = &mut memory.path;
+        // Half the side of the node at `depth`, on every lane: halved as the
+        // descent goes down, set again where a move restarts it.
+        let mut node_half = Vec3A::splat(pow2(root_log - depth as u32 - 1));
         // Where the walk ends, for the next one: a position inside the node
         // at `depth` (whose path entries are all written).
         macro_rules! end {
@@ -214,8 +220,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                 match node.kind() {
                     NodeKind::Branch { children, first } => {
                         let half_log = root_log - depth as u32 - 1;
+                        let halves = (node_half, half_log);
                         let (child, octant) =
-                            lanes.half_of(key, node_at, half_log, &mut at, &mut known_log);
+                            lanes.half_of(key, node_at, halves, &mut at, &mut known_log);
                         if children & (1 << octant) == 0 {
                             break (child, half_log);
                         }
@@ -225,12 +232,16 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                         path[depth % PATH] = index;
                         node = nodes[index as usize];
                         node_at = child;
+                        // Exact: a power of two halved.
+                        node_half *= 0.5;
                     }
                     NodeKind::Solid(material) => {
                         // The voxel the ray is in: the known cube, halved
                         // down to side 1.
                         while known_log > 0 {
-                            lanes.half_of(key, at, known_log - 1, &mut at, &mut known_log);
+                            let half_log = known_log - 1;
+                            let halves = (Vec3A::splat(pow2(half_log)), half_log);
+                            lanes.half_of(key, at, halves, &mut at, &mut known_log);
                         }
                         end!(
                             at,
@@ -249,13 +260,13 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                         materials,
                     } => loop {
                         let (group, upper) =
-                            lanes.half_of(key, node_at, 1, &mut at, &mut known_log);
+                            lanes.half_of(key, node_at, (TWO, 1), &mut at, &mut known_log);
                         let group_bit = spread(upper) << 1;
                         let (cube, log) = if occupancy & GROUP << group_bit == 0 {
                             (group, 1)
                         } else {
                             let (cell, upper) =
-                                lanes.half_of(key, group, 0, &mut at, &mut known_log);
+                                lanes.half_of(key, group, (Vec3A::ONE, 0), &mut at, &mut known_log);
                             let bit = group_bit | spread(upper);
                             if occupancy >> bit & 1 != 0 {
                                 let material = self.brick_material(occupancy, materials, bit);
@@ -334,8 +345,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             key = exit;
             // Most moves stay inside the node at `depth` (a brick's groups
             // and voxels, a branch's children).
-            let node_side = Vec3A::splat(pow2(root_log - depth as u32));
-            if (next.cmpge(node_at) & next.cmplt(node_at + node_side)).all() {
+            if (next.cmpge(node_at) & next.cmplt(node_at + (node_half + node_half))).all() {
                 continue;
             }
             // Else the nodes whose cubes are wider than every changed bit
@@ -353,6 +363,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                 nodes[path[depth % PATH] as usize]
             };
             node_at = cube_at(at, min_f, root_log - depth as u32);
+            node_half = Vec3A::splat(pow2(root_log - depth as u32 - 1));
         }
     }
 
