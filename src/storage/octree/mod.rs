@@ -117,13 +117,13 @@ pub struct Node {
     unused: u16,
 }
 
-/// [`Node::tag`] of a branch.
+/// The `tag` of a branch node.
 const TAG_BRANCH: u8 = 0;
-/// [`Node::tag`] of a solid node.
+/// The `tag` of a solid node.
 const TAG_SOLID: u8 = 1;
-/// [`Node::tag`] of a brick with one material.
+/// The `tag` of a brick with one material.
 const TAG_UNIFORM_BRICK: u8 = 2;
-/// [`Node::tag`] of a brick with packed materials.
+/// The `tag` of a brick with packed materials.
 const TAG_PACKED_BRICK: u8 = 3;
 
 impl Node {
