@@ -203,7 +203,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let path = &mut memory.path;
         // Half the side of the node at `depth`, on every lane: halved as the
         // descent goes down, set again where a move restarts it.
-        let mut node_half = Vec3A::splat(pow2(root_log - depth as u32 - 1));
+        let half_side_at = |depth: usize| Vec3A::splat(pow2(root_log - depth as u32 - 1));
+        let mut node_half = half_side_at(depth);
         // Where the walk ends, for the next one: a position inside the node
         // at `depth` (whose path entries are all written).
         macro_rules! end {
@@ -363,7 +364,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                 nodes[path[depth % PATH] as usize]
             };
             node_at = cube_at(at, min_f, root_log - depth as u32);
-            node_half = Vec3A::splat(pow2(root_log - depth as u32 - 1));
+            node_half = half_side_at(depth);
         }
     }
 
