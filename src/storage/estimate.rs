@@ -7,7 +7,7 @@
 //! usable without an allocator, and as cheap as a multiplication.
 
 use crate::geom::IAabb;
-use crate::storage::octree::BRICK;
+use crate::storage::octree::node::BRICK;
 
 /// Exactly the bytes of a [`crate::storage::dense::DenseScene`] over
 /// `bounds`: one per voxel (0 for an empty box). Unlike

@@ -10,13 +10,14 @@ use std::fmt::Write as _;
 
 use voxtrace::glam::Vec3;
 use voxtrace::{
-    render_parallel, unpack, Camera, CameraSettings, Framebuffer, IAabb, Occlusion, OctreeScene,
-    RayStats, Rect, RenderOptions, VoxelGenerator,
+    render_parallel, Camera, CameraSettings, Framebuffer, IAabb, Occlusion, OctreeScene, RayStats,
+    Rect, RenderOptions, VoxelGenerator,
 };
 use voxtrace_cli::on_threads;
 
 use crate::common_args::Output;
 use crate::geometric;
+use crate::image_error::{psnr, rmse};
 use crate::measure::{count_of, cpu_name, format_ms, median_of};
 use crate::path_accuracy;
 use crate::plot::{Chart, Line, Series};
@@ -207,24 +208,6 @@ pub fn run(args: &AccuracyArgs) -> Result<(), String> {
     ];
     args.output.write("accuracy", &md, &charts)?;
     Ok(())
-}
-
-/// Root mean square difference over every color channel, in 0..=255 units.
-pub(crate) fn rmse(pixels: &[u32], reference: &[u32]) -> f64 {
-    let mut sum = 0.0;
-    for (&p, &r) in pixels.iter().zip(reference) {
-        let (p, r) = (unpack(p), unpack(r));
-        for c in 0..3 {
-            let d = f64::from(p[c]) - f64::from(r[c]);
-            sum += d * d;
-        }
-    }
-    (sum / (3 * pixels.len().max(1)) as f64).sqrt()
-}
-
-/// Peak signal to noise ratio for 8-bit channels; infinite for no error.
-pub(crate) fn psnr(rmse: f64) -> f64 {
-    20.0 * (255.0 / rmse).log10()
 }
 
 fn table(

@@ -7,6 +7,7 @@
 mod accuracy;
 mod common_args;
 mod geometric;
+mod image_error;
 mod measure;
 mod naive_dda;
 mod path_accuracy;

@@ -19,7 +19,7 @@ use voxtrace::{
 };
 use voxtrace_cli::{fit, Boxes};
 
-use crate::accuracy::{psnr, rmse};
+use crate::image_error::{psnr, rmse};
 use crate::measure::{count_of, format_ms, median_of};
 use crate::plot::{Chart, Line, Series};
 

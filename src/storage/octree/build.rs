@@ -10,10 +10,10 @@ use glam::IVec3;
 
 use crate::error::Error;
 use crate::geom::IAabb;
-use crate::storage::octree::{
-    brick_bit, child_offset, occupied_box, BrickMaterials, Node, NodeKind, OctreeLen, OctreeScene,
-    BRICK,
+use crate::storage::octree::node::{
+    brick_bit, child_offset, BrickMaterials, Node, NodeKind, BRICK,
 };
+use crate::storage::octree::{occupied_box, OctreeLen, OctreeScene};
 use crate::voxel::{Region, VoxelSource};
 
 /// Side of the tiles the builder fills from the source in one call.

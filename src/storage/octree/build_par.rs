@@ -11,7 +11,8 @@ use crate::geom::IAabb;
 use crate::storage::octree::build::{
     octants, push_vec, root_size, shortcut, Builder, Cube, VecSink,
 };
-use crate::storage::octree::{child_offset, BrickMaterials, Node, NodeKind, OctreeScene};
+use crate::storage::octree::node::{child_offset, BrickMaterials, Node, NodeKind};
+use crate::storage::octree::OctreeScene;
 use crate::voxel::VoxelSource;
 
 /// Side of the cubes handed to one task. 64^3 voxels are a few milliseconds

@@ -70,7 +70,7 @@ mod tests {
     use glam::IVec3;
 
     use super::{changed_bits, cube_at, pow2, spread, whole};
-    use crate::storage::octree::brick_bit;
+    use crate::storage::octree::node::brick_bit;
 
     /// Relative coordinates across the whole range a tree uses: small ones,
     /// ones around each power of two, and the largest below 2^23.

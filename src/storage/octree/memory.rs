@@ -11,7 +11,8 @@ use crate::geom::{IAabb, Ray, MAX_COORD};
 use crate::scene::{WalkMemory, MEMORY_PATH};
 use crate::storage::octree::grid::{pow2, whole};
 use crate::storage::octree::lanes::Lanes;
-use crate::storage::octree::{brick_bit, child_rank, Node, NodeKind, OctreeScene};
+use crate::storage::octree::node::{brick_bit, child_rank, Node, NodeKind};
+use crate::storage::octree::OctreeScene;
 use crate::storage::walk::{Key, Walk};
 
 /// Entries of the path: the largest root has side `2 * MAX_COORD` = 2^23,

@@ -18,19 +18,14 @@
 
 use glam::{IVec3, Vec3A};
 
-use crate::frustum::Frustum;
 use crate::geom::{IAabb, Ray};
-use crate::scene::{Hit, Scene, StartSeen, Traced, WalkMemory};
+use crate::scene::{Hit, Traced, WalkMemory};
 use crate::storage::octree::grid::{changed_bits, cube_at, pow2, spread, whole};
 use crate::storage::octree::lanes::Lanes;
 use crate::storage::octree::memory::{Begun, PATH};
-use crate::storage::octree::{child_rank, BrickMaterials, Node, NodeKind, OctreeScene, BRICK};
-use crate::storage::walk::{Key, Walk};
-
-/// The visitor of every trace but the debug view's: never stops the walk.
-fn keep_walking(_: IAabb) -> bool {
-    true
-}
+use crate::storage::octree::node::{child_rank, BrickMaterials, Node, NodeKind, BRICK};
+use crate::storage::octree::OctreeScene;
+use crate::storage::walk::Key;
 
 /// The cube of side 2^log at the corner `cube` (exact floats) as the box
 /// a visitor is shown.
@@ -50,94 +45,6 @@ const GROUP: u64 = 0x0033_0033;
 /// The half side of a brick (2) on every lane.
 const TWO: Vec3A = Vec3A::splat(2.0);
 
-impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
-    fn bounds(&self) -> IAabb {
-        self.bounds
-    }
-
-    fn trace_counted(&self, ray: &Ray) -> Traced {
-        let memory = &mut WalkMemory::new();
-        self.walk(ray, self.occupied, 0.0, f32::INFINITY, keep_walking, memory)
-    }
-
-    fn clear_distance(&self, frustum: &Frustum) -> f32 {
-        self.beam_distance(frustum)
-    }
-
-    fn trace_from(&self, ray: &Ray, t_start: f32) -> Traced {
-        self.trace_from_with(ray, t_start, &mut WalkMemory::new())
-    }
-
-    fn trace_from_with<'s>(
-        &'s self,
-        ray: &Ray,
-        t_start: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> Traced {
-        // A clear distance of 0 mostly means the camera touches a solid
-        // voxel, and then most rays hit the cell they start in: one lookup
-        // answers them as the walk would, without building it.
-        // Rays sharing an origin (a camera's) and a direction class share
-        // that cell, so the memory answers them all after the first.
-        if t_start == 0.0 {
-            let owner = self as *const Self as usize;
-            let key = StartSeen::key_of(ray, Walk::start_class(ray));
-            let seen = memory.start;
-            let hit = if seen.owner == owner && seen.key == key {
-                seen.hit
-            } else {
-                let (cell, face) = Walk::start_cell(ray);
-                let material = self.material_with(cell, memory);
-                let hit = match material {
-                    0 => None,
-                    m => Hit::from_palette(&self.palette, cell, face, 0.0, m),
-                };
-                memory.start = StartSeen { owner, key, hit };
-                hit
-            };
-            if hit.is_some() {
-                return Traced { hit, steps: 0 };
-            }
-        }
-        self.walk(
-            ray,
-            self.occupied,
-            t_start,
-            f32::INFINITY,
-            keep_walking,
-            memory,
-        )
-    }
-
-    /// Walks the whole volume (not only the occupied box), so the debug
-    /// view shows every box of the tree a ray crosses.
-    fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced {
-        let memory = &mut WalkMemory::new();
-        self.walk(ray, self.bounds, 0.0, f32::INFINITY, visit, memory)
-    }
-
-    fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        self.trace_within_with(ray, t_max, &mut WalkMemory::new())
-    }
-
-    fn trace_within_with<'s>(
-        &'s self,
-        ray: &Ray,
-        t_max: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> Option<Hit> {
-        let hit = self.walk(ray, self.occupied, 0.0, t_max, keep_walking, memory);
-        hit.hit.filter(|h| h.t <= t_max)
-    }
-
-    fn storage_bytes(&self) -> usize {
-        core::mem::size_of_val(self.nodes.as_ref())
-            + self.materials.as_ref().len()
-            + core::mem::size_of::<crate::voxel::Palette>()
-            + core::mem::size_of::<Node>()
-    }
-}
-
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// The box-at-a-time walk through `region` (the occupied box, or the
     /// whole volume) from where the ray is at `t_start` (0: its start),
@@ -153,7 +60,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// Starting at the region instead of the volume changes nothing but
     /// speed: outside the occupied box every cell is empty, and the walk
     /// enters the region at the crossing single steps would enter it by.
-    fn walk<V: FnMut(IAabb) -> bool>(
+    pub(super) fn walk<V: FnMut(IAabb) -> bool>(
         &self,
         ray: &Ray,
         region: IAabb,

@@ -1,93 +1,24 @@
-//! The per-frame shader: the effects a frame asked for, resolved once into a
-//! tracer compiled for exactly that set.
-//!
-//! [`Shader::dispatch`] matches on the effect set once and hands a job a
-//! kernel type whose effect switches are `const` generics, so the per-pixel
-//! code of a frame without shadows contains no shadow test at all (and so
-//! on for every effect). Every renderer (pixel, span, region, threaded) is a
-//! job, so they all compute pixels with the same code.
-//!
-//! Scenes whose voxels use metal, glass or emitters (the [`EffectPlan`]
-//! says) get the path tracer instead, compiled for the material kinds
-//! present; the face-shaded kernels above are untouched by it, so
-//! all-diffuse scenes render as they always did.
+//! The kernels a [`Shader`] runs a frame's job with, and the one match
+//! that picks them ([`Shader::dispatch`]): the unshaded look, the debug
+//! view of the boxes a walk crosses, the lit look with its effects as
+//! `const` switches (shadows, occlusion, fog, supersampling), and the path
+//! tracer (whose kernel lives in `render/path/`) for scenes with metal,
+//! glass or emitters.
 
-use glam::{U8Vec3, UVec3, Vec3};
+use glam::{U8Vec3, UVec3};
 
 use crate::geom::Ray;
-use crate::material::{Materials, SceneMaterials};
-use crate::render::camera::Camera;
 use crate::render::debug_view::{box_color, enters_near_edge};
-use crate::render::options::{Background, RenderOptions};
+use crate::render::options::Background;
 use crate::render::path::{Path, PathSetup};
-use crate::render::plan::{EffectPlan, Look};
 use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
-use crate::render::shade::{
-    face_index, face_weights, fog_blend, lit, pack, pack_alpha, sky, FLAT_SKY,
-};
+use crate::render::shade::{face_index, fog_blend, lit, pack, pack_alpha, sky, FLAT_SKY};
+use crate::render::shader::{FrameJob, Kernel, Memories, Shader};
 use crate::render::stats::RayStats;
-use crate::scene::{Scene, WalkMemory};
+use crate::scene::Scene;
 
-/// How wide the debug view's edges are: a fraction of a pixel's footprint
-/// each side of the edge.
-const EDGE_PIXELS: f32 = 0.75;
-
-/// The table of a path-traced frame whose scene has no materials.
-static ALL_DIFFUSE: Materials = Materials::all_diffuse();
-
-/// Everything a frame's pixels need, computed once per frame.
-pub(crate) struct Shader<'c, 'm> {
-    camera: &'c Camera,
-    options: RenderOptions,
-    /// Brightness out of 256 per face (index [`face_index`]) in full light.
-    light: [u16; 7],
-    /// Brightness per face when the sun is blocked.
-    shadowed: [u16; 7],
-    /// Faces the sun shines on (`n . sun > 0`): only they cast shadow rays.
-    sunlit: [bool; 7],
-    /// Unit direction toward the sun.
-    sun: Vec3,
-    /// The debug view's edge half-width: at distance 0, and its growth per
-    /// unit of distance.
-    edge: (f32, f32),
-    /// The path tracer's setup, when the plan is to path-trace.
-    path: Option<PathSetup<'m>>,
-}
-
-impl<'c, 'm> Shader<'c, 'm> {
-    /// The shader of `options` for `camera`'s frame of a scene with
-    /// `materials` (`None`: all diffuse). Settings
-    /// [`RenderOptions::validate`] rejects are turned off, never a panic.
-    pub(crate) fn new(
-        options: &RenderOptions,
-        camera: &'c Camera,
-        materials: Option<SceneMaterials<'m>>,
-    ) -> Self {
-        let plan = EffectPlan::new(options, materials);
-        let path = (plan.look == Look::Path).then(|| {
-            let (table, emitters) =
-                materials.map_or((&ALL_DIFFUSE, &[][..]), |m| (m.table, m.emitters));
-            PathSetup::new(&plan.options, table, emitters)
-        });
-        let options = options.sanitized();
-        let (light, shadowed, sunlit, sun) = face_weights(options.sun);
-        Shader {
-            camera,
-            options,
-            light,
-            shadowed,
-            sunlit,
-            sun,
-            edge: if camera.is_orthographic() {
-                (EDGE_PIXELS * camera.pixel_spread(), 0.0)
-            } else {
-                (0.0, EDGE_PIXELS * camera.pixel_spread())
-            },
-            path,
-        }
-    }
-
+impl<'m> Shader<'_, 'm> {
     /// Runs `job` with the kernel compiled for this frame's effects.
     pub(crate) fn dispatch<J: FrameJob>(&self, job: J) -> J::Output {
         let o = &self.options;
@@ -174,75 +105,8 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Kernel
     }
 }
 
-/// Something done to a frame's pixels with one kernel: a pixel, a span, a
-/// region, a threaded frame.
-pub(crate) trait FrameJob {
-    /// What the job returns.
-    type Output;
-    /// Does the job with `kernel`, which computes each pixel.
-    fn run<K: Kernel>(self, kernel: &K) -> Self::Output;
-}
-
-/// What the walks of neighbouring pixels share, one memory per kind of ray
-/// (each kind's rays are coherent with each other, not with the others).
-#[derive(Default)]
-pub(crate) struct Memories<'s> {
-    /// Rays from the camera.
-    primary: WalkMemory<'s>,
-    /// Rays toward the sun.
-    shadow: WalkMemory<'s>,
-    /// Ambient occlusion rays.
-    occlusion: WalkMemory<'s>,
-}
-
-/// Computes pixels with one fixed set of effects.
-pub(crate) trait Kernel: Sync {
-    /// Pixel `(x, y)` of the frame: packed color and the rays it traced.
-    /// Its primary rays hit nothing before `t_start` (0 when unknown), so
-    /// they may start walking there; its walks may begin from what the
-    /// previous pixel's left in `memory`. The pixel is the same for any
-    /// such `t_start` and any memory.
-    fn pixel<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        x: u32,
-        y: u32,
-        t_start: f32,
-        memory: &mut Memories<'s>,
-    ) -> (u32, RayStats);
-
-    /// Whether the kernel's primary rays use a tile's clear distance (the
-    /// debug view walks from the camera to show every box).
-    fn uses_beam(&self) -> bool {
-        true
-    }
-}
-
-impl Shader<'_, '_> {
-    /// The packed pixel of a primary ray that missed: `sky` is the sky's
-    /// color in this look.
-    #[inline]
-    fn miss(&self, sky: U8Vec3) -> u32 {
-        match self.options.background {
-            Background::Sky => pack(sky),
-            Background::Transparent => 0,
-            Background::Color(c) => pack(c),
-        }
-    }
-
-    /// The opaque color a missed sample adds to a pixel's mean (`sky` in
-    /// this look); unused for a transparent background.
-    #[inline]
-    fn miss_color(&self, sky: U8Vec3) -> U8Vec3 {
-        match self.options.background {
-            Background::Color(c) => c,
-            Background::Sky | Background::Transparent => sky,
-        }
-    }
-}
-
 /// The unshaded look.
-struct Flat<'s, 'c, 'm>(&'s Shader<'c, 'm>);
+pub(super) struct Flat<'s, 'c, 'm>(pub(super) &'s Shader<'c, 'm>);
 
 impl Kernel for Flat<'_, '_, '_> {
     #[inline]
@@ -264,7 +128,7 @@ impl Kernel for Flat<'_, '_, '_> {
 }
 
 /// The debug view: box edges over black voxels and the sky.
-struct DebugView<'s, 'c, 'm>(&'s Shader<'c, 'm>);
+pub(super) struct DebugView<'s, 'c, 'm>(pub(super) &'s Shader<'c, 'm>);
 
 impl Kernel for DebugView<'_, '_, '_> {
     fn pixel<'s, S: Scene + ?Sized>(
@@ -299,9 +163,15 @@ impl Kernel for DebugView<'_, '_, '_> {
 
 /// The lit look with the chosen effects: shadows, ambient occlusion, fog and
 /// several samples per pixel, each compiled in only when on.
-struct Lit<'s, 'c, 'm, const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>(
-    &'s Shader<'c, 'm>,
-);
+pub(super) struct Lit<
+    's,
+    'c,
+    'm,
+    const SHADOWS: bool,
+    const AO: bool,
+    const FOG: bool,
+    const AA: bool,
+>(pub(super) &'s Shader<'c, 'm>);
 
 impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kernel
     for Lit<'_, '_, '_, SHADOWS, AO, FOG, AA>
