@@ -20,11 +20,8 @@ use glam::{IVec3, Vec3};
 use crate::frustum::Frustum;
 use crate::geom::{gap_length, gap_to_box, IAabb};
 use crate::math::floor_cell;
-use crate::storage::octree::node::{brick_bit, child_offset, child_rank, Node, NodeKind};
+use crate::storage::octree::node::{brick_bit, child_offset, child_rank, Node, NodeKind, GROUP};
 use crate::storage::octree::OctreeScene;
-
-/// Occupancy bits of the 2x2x2 group at a brick's local origin.
-const GROUP: u64 = 0x0033_0033;
 
 /// Levels of the walk: the largest root (side 2^23) has branches at depths
 /// 0 to 20 above its side-4 bricks.

@@ -11,7 +11,7 @@ use glam::IVec3;
 use crate::error::Error;
 use crate::geom::IAabb;
 use crate::storage::octree::node::{
-    brick_bit, child_offset, BrickMaterials, Node, NodeKind, BRICK,
+    brick_bit, brick_local, child_offset, BrickMaterials, Node, NodeKind, BRICK,
 };
 use crate::storage::octree::{occupied_box, OctreeLen, OctreeScene};
 use crate::voxel::{Region, VoxelSource};
@@ -220,8 +220,7 @@ impl<'s, S: VoxelSource + ?Sized, K: Sink> Builder<'s, S, K> {
         // Materials in bit order, for popcount indexing.
         let mut bits = occupancy;
         while bits != 0 {
-            let bit = bits.trailing_zeros() as i32;
-            let local = IVec3::new(bit & 3, (bit >> 2) & 3, bit >> 4);
+            let local = brick_local(bits.trailing_zeros());
             packed[count] = self.tile_material(corner + local);
             count += 1;
             bits &= bits - 1;

@@ -16,7 +16,7 @@ use glam::IVec3;
 use crate::frustum::Frustum;
 use crate::geom::{IAabb, Ray};
 use crate::scene::{Hit, Scene, StartSeen, Traced, WalkMemory};
-use crate::storage::octree::node::{NodeKind, BRICK};
+use crate::storage::octree::node::{brick_local, child_offset, NodeKind, BRICK};
 use crate::storage::walk::Walk;
 use crate::voxel::Palette;
 
@@ -264,8 +264,7 @@ fn grow(node: Node, corner: IVec3, side: i32, nodes: &[Node], found: &mut IAabb)
             let (mut lo, mut hi) = (IVec3::splat(BRICK), IVec3::ZERO);
             let mut bits = occupancy;
             while bits != 0 {
-                let bit = bits.trailing_zeros() as i32;
-                let local = IVec3::new(bit & 3, (bit >> 2) & 3, bit >> 4);
+                let local = brick_local(bits.trailing_zeros());
                 lo = lo.min(local);
                 hi = hi.max(local + 1);
                 bits &= bits - 1;
@@ -277,15 +276,11 @@ fn grow(node: Node, corner: IVec3, side: i32, nodes: &[Node], found: &mut IAabb)
         NodeKind::Branch { children, first } => {
             let half = side / 2;
             let mut rank = 0;
-            for child in 0..8u32 {
+            for child in 0..8usize {
                 if children & (1 << child) == 0 {
                     continue;
                 }
-                let offset = IVec3::new(
-                    (child & 1) as i32,
-                    (child >> 1 & 1) as i32,
-                    (child >> 2 & 1) as i32,
-                ) * half;
+                let offset = child_offset(child) * half;
                 if let Some(&next) = nodes.get((first + rank) as usize) {
                     grow(next, corner + offset, half, nodes, found);
                 }

@@ -1,7 +1,8 @@
 //! The octree's node: 16 bytes, plain fields with an explicit kind byte,
 //! read and written as a [`NodeKind`]; 4x4x4 bricks as one `u64`
 //! occupancy mask; and the small tables every reader of nodes shares
-//! (a child's rank, a brick's bit of a position, an octant's offset).
+//! (a child's rank, a brick's bit of a position and back, a 2x2x2 group's
+//! bits, an octant's offset).
 
 use glam::IVec3;
 
@@ -13,6 +14,19 @@ pub(crate) const BRICK: i32 = 4;
 pub(crate) fn brick_bit(local: IVec3) -> u32 {
     (local.x | local.y << 2 | local.z << 4) as u32
 }
+
+/// The local brick position of bit `bit` (below 64): the inverse of
+/// [`brick_bit`].
+#[inline]
+pub(crate) fn brick_local(bit: u32) -> IVec3 {
+    debug_assert!(bit < 64, "bit {bit}");
+    let bit = bit as i32;
+    IVec3::new(bit & 3, (bit >> 2) & 3, bit >> 4)
+}
+
+/// Occupancy bits of the 2x2x2 group at a brick's local origin: `x | y << 2
+/// | z << 4` for `x, y, z` in `{0, 1}`; shifted by a group's bit, any group.
+pub(crate) const GROUP: u64 = 0x0033_0033;
 
 /// `RANK[m][i]` is the number of bits of `m` below bit `i`: a child's rank
 /// in one load, where the target has no popcount instruction and the mask
@@ -172,7 +186,11 @@ const _: () = assert!(core::mem::size_of::<Node>() == 16);
 mod tests {
     use proptest::prelude::*;
 
-    use super::{child_rank, BrickMaterials, Node, NodeKind};
+    use glam::IVec3;
+
+    use super::{
+        brick_bit, brick_local, child_offset, child_rank, BrickMaterials, Node, NodeKind, GROUP,
+    };
 
     /// Every kind a node can hold, from its raw parts.
     fn kind(pick: u8, mask: u64, index: u32, material: u8) -> NodeKind {
@@ -207,6 +225,25 @@ mod tests {
             prop_assert_eq!(Node::of(kw).kind(), kw);
             prop_assert_eq!(Node::of(ka).kind(), ka);
             prop_assert_eq!(Node::of(ka) == Node::of(kb), ka == kb);
+        }
+    }
+
+    #[test]
+    fn brick_bits_and_positions_round_trip_and_groups_hold_their_voxels() {
+        for bit in 0..64 {
+            let local = brick_local(bit);
+            assert!(local.cmpge(IVec3::ZERO).all() && local.cmplt(IVec3::splat(4)).all());
+            assert_eq!(brick_bit(local), bit);
+        }
+        // Group g (corner 2 * child_offset(g)) holds exactly its eight voxels.
+        for g in 0..8 {
+            let corner = child_offset(g) * 2;
+            let group = GROUP << brick_bit(corner);
+            for bit in 0..64 {
+                let inside = (brick_local(bit) - corner).cmpge(IVec3::ZERO).all()
+                    && (brick_local(bit) - corner).cmplt(IVec3::splat(2)).all();
+                assert_eq!(group >> bit & 1 != 0, inside, "group {g} bit {bit}");
+            }
         }
     }
 

@@ -23,7 +23,7 @@ use crate::scene::{Hit, Traced, WalkMemory};
 use crate::storage::octree::grid::{changed_bits, cube_at, pow2, spread, whole};
 use crate::storage::octree::lanes::Lanes;
 use crate::storage::octree::memory::{Begun, PATH};
-use crate::storage::octree::node::{child_rank, BrickMaterials, Node, NodeKind, BRICK};
+use crate::storage::octree::node::{child_rank, BrickMaterials, Node, NodeKind, BRICK, GROUP};
 use crate::storage::octree::OctreeScene;
 use crate::storage::walk::Key;
 
@@ -37,10 +37,6 @@ fn cube_box(cube: Vec3A, log: u32) -> IAabb {
         max: low + (1 << log),
     }
 }
-
-/// Occupancy bits of the 2x2x2 group at the brick's local origin: `x | y << 2
-/// | z << 4` for `x, y, z` in `{0, 1}`.
-const GROUP: u64 = 0x0033_0033;
 
 /// The half side of a brick (2) on every lane.
 const TWO: Vec3A = Vec3A::splat(2.0);
