@@ -38,6 +38,19 @@ fn floor_and_ceil(v: Vec3A) -> (Vec3A, Vec3A) {
     )
 }
 
+/// `v` (whole numbers with `|v| < 2^22`) as integers, read from the bits
+/// of `v + 1.5 * 2^23`: that sum lies in `(2^23, 2^24)`, where the float's
+/// last mantissa bit is worth 1, so its bits are those of 1.5 * 2^23 plus
+/// `v`. Exact, without the saturating casts' range checks.
+#[inline]
+pub(super) fn whole_numbers(v: Vec3A) -> IVec3 {
+    const ROUND: f32 = 12_582_912.0; // 1.5 * 2^23
+    let bits = (v + ROUND)
+        .to_array()
+        .map(|x| x.to_bits().wrapping_sub(ROUND.to_bits()) as i32);
+    IVec3::from_array(bits)
+}
+
 /// Where a walk starts: its cell, the axes it moves along and those of
 /// them it moves down, the crossing times of the cell's exit planes and
 /// the key it entered the cell by.
@@ -105,7 +118,8 @@ impl Entry {
             }
         };
         Some(Entry {
-            cell: cell.as_ivec3(),
+            // (Within +-2^22, as the origin.)
+            cell: whole_numbers(cell),
             moving,
             down,
             next_t,

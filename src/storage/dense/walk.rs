@@ -23,7 +23,7 @@ use glam::{BVec3A, IVec3, Vec3A, Vec3Swizzles};
 
 use crate::geom::{Face, IAabb, Ray};
 use crate::scene::{Hit, Traced};
-use crate::storage::dense::entry::Entry;
+use crate::storage::dense::entry::{whole_numbers, Entry};
 use crate::storage::dense::DenseScene;
 use crate::storage::walk::{Key, Walk};
 use crate::voxel::Palette;
@@ -144,7 +144,8 @@ impl<B: AsRef<[u8]>> DenseScene<B> {
                 if key.t > limit {
                     return Traced { hit: None, steps };
                 }
-                let pos = Vec3A::select(down, lo + left, hi - 1.0 - left).as_ivec3();
+                // (A cell of the region: within +-2^22.)
+                let pos = whole_numbers(Vec3A::select(down, lo + left, hi - 1.0 - left));
                 let hit = hit(&self.palette, pos, down, key, material);
                 return Traced { hit, steps };
             }
