@@ -9,7 +9,7 @@ use crate::geom::{Face, Ray};
 use crate::storage::octree::grid::{pow2, AXES};
 #[cfg(doc)]
 use crate::storage::walk::Walk;
-use crate::storage::walk::{directions, exact_start, latest, start_lanes, Key};
+use crate::storage::walk::{directions, exact_start, latest, start_lanes, Key, EXACT};
 
 /// A ray's walk, reduced to what the octree asks of it.
 #[derive(Clone, Copy, Debug)]
@@ -73,6 +73,60 @@ impl Lanes {
         let near = Vec3A::select(self.up, lo, hi);
         let t = Vec3A::select(inside, self.start_t, (near - self.origin) * self.inv_dir);
         Some((latest(t), inside.all()))
+    }
+
+    /// The cell a walk is in when it enters the box `[lo, hi)` (exact
+    /// floats) from outside at `enters` ([`Lanes::entry_of`]'s key), found
+    /// as the dense walk's entry finds it: on the entry axis the box's
+    /// first layer; on every other axis it moves along, the cell of the
+    /// entry point, checked with the crossings before and after it (the
+    /// previous cell's exit comes before `enters`, its own does not), so the
+    /// guess's rounding cannot move it; the start cell's coordinate on an
+    /// axis it does not move along. `None` when a guess does not check out,
+    /// the entry axis has the start inside, the origin is too far out for
+    /// exact cells, or the cell lies outside the box: the caller then asks
+    /// the walk itself.
+    #[inline]
+    pub(crate) fn entry_cell(&self, lo: Vec3A, hi: Vec3A, enters: Key) -> Option<Vec3A> {
+        if !self.origin.abs().cmplt(Vec3A::splat(EXACT)).all() {
+            return None;
+        }
+        let axis = Vec3A::splat(f32::from(enters.axis));
+        let on_entry_axis = AXES.cmpeq(axis);
+        let inside = self.start.cmpge(lo) & self.start.cmplt(hi);
+        if (inside & on_entry_axis).any() {
+            return None;
+        }
+        // The first cell from the near side, and one past the far one.
+        let near = Vec3A::select(self.up, lo, hi - 1.0);
+        let beyond = Vec3A::select(self.up, hi, lo - 1.0);
+        let from = Vec3A::select(inside, self.start, near);
+        let point = self.point_at(enters.t).floor();
+        let guess = Vec3A::select(
+            self.up,
+            point.max(from).min(beyond),
+            point.min(from).max(beyond),
+        );
+        // Whether the crossing of each lane's exit plane of `cell` comes
+        // before `enters`, ties to the lower axis.
+        let kt = Vec3A::splat(enters.t);
+        let exits_before = |cell: Vec3A| {
+            let plane = Vec3A::select(self.up, cell + 1.0, cell);
+            let t = (plane - self.origin) * self.inv_dir;
+            t.cmplt(kt) | (t.cmpeq(kt) & AXES.cmplt(axis))
+        };
+        let after_previous = guess.cmpeq(from) | exits_before(guess - self.step);
+        let not_before = guess.cmpeq(beyond) | !exits_before(guess);
+        let checked = (after_previous & not_before) | !self.moving | on_entry_axis;
+        if !checked.all() {
+            return None;
+        }
+        let cell = Vec3A::select(
+            on_entry_axis,
+            near,
+            Vec3A::select(self.moving, guess, self.start),
+        );
+        (cell.cmpge(lo) & cell.cmplt(hi)).all().then_some(cell)
     }
 
     /// The key at which the ray enters `cell` (exact floats): the latest
@@ -241,6 +295,44 @@ mod tests {
             assert_eq!(lanes.exit_of(lo, hi), walk.exit_of(bounds.min, bounds.max));
         }
         assert!(entered > 10_000, "{entered} walks entered");
+    }
+
+    /// A ray entering a box from outside is, by the lanes' entry cell, in
+    /// the cell the walk enters, whenever the lanes answer.
+    #[test]
+    fn entry_cells_agree_with_the_walk() {
+        let mut rng = Rng(0x5851_f42d_4c95_7f2d);
+        let (mut answered, mut outside) = (0, 0);
+        for _ in 0..40_000 {
+            let bounds = rng.bounds();
+            let Some(ray) = rng.ray_at(bounds) else {
+                continue;
+            };
+            let lanes = Lanes::of(&ray);
+            let (lo, hi) = lanes_of(bounds);
+            let Some((key, false)) = lanes.entry_of(lo, hi) else {
+                continue;
+            };
+            if key.t == f32::INFINITY {
+                continue;
+            }
+            outside += 1;
+            let walk = Walk::start(&ray, &bounds);
+            if let Some(cell) = lanes.entry_cell(lo, hi, key) {
+                answered += 1;
+                let walk = walk.expect("the lanes found an entry cell");
+                assert_eq!(cell.as_ivec3(), walk.cell(), "{ray:?} {bounds:?}");
+                assert_eq!(key, walk.key(), "{ray:?} {bounds:?}");
+            }
+        }
+        assert!(outside > 5_000, "{outside} rays entered from outside");
+        // The guess is checked, not trusted; the random boxes and rays
+        // (some far from the origin, some on planes) make it fail more
+        // often than a scene's do.
+        assert!(
+            answered * 4 > outside * 3,
+            "{answered} of {outside} answered"
+        );
     }
 
     /// Every cell a walk reaches by single steps is entered at the key the

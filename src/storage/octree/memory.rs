@@ -54,7 +54,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// face), else to the root cube; the descent narrows it by the same key
     /// comparisons as far as the tree needs, and no cell is settled first.
     /// A ray entering the region later begins in the cell it enters by
-    /// (its start cell when it starts inside), as single steps would.
+    /// (its start cell when it starts inside), as single steps would: from
+    /// outside, the cell [`Lanes::entry_cell`] checks, or where the walk's
+    /// own placement puts it when that check fails.
     /// Inlined: its answer stays in registers.
     #[inline(always)]
     pub(super) fn begin(
@@ -104,6 +106,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         }
         let (cell, key) = if starts_inside {
             (lanes.start.as_ivec3(), enters)
+        } else if let Some(cell) = lanes.entry_cell(region_lo, region_hi, enters) {
+            (cell.as_ivec3(), enters)
         } else {
             let mut walk = Walk::unplaced(ray, &region);
             walk.place_from(t_start)?;
