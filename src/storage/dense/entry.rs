@@ -7,20 +7,16 @@
 //! decides it; on every other axis the walk is then in the first cell,
 //! from the start (or the near side) on, whose exit crossing does not come
 //! before the entry key: crossings only grow along an axis, so that cell
-//! is unique, and `Walk::start`'s search from any guess ends there. This
-//! file guesses it from the entry point and checks the guess with exact
-//! key comparisons, leaving anything it cannot confirm to `Walk::start`.
+//! is unique, and `Walk::start`'s search from any guess ends there. The
+//! shared `storage/walk/entry.rs` guesses it from the entry point and
+//! checks the guess with exact key comparisons, on lanes (the octree
+//! enters its box the same way); anything it cannot confirm is left to
+//! `Walk::start`.
 
 use glam::{BVec3A, IVec3, Vec3A};
 
 use crate::geom::{IAabb, Ray};
-use crate::storage::walk::{start_rule, Key, Walk, EXACT};
-
-/// Before every crossing.
-const BEFORE: Key = Key {
-    t: f32::NEG_INFINITY,
-    axis: 0,
-};
+use crate::storage::walk::{directions, entry_cell, exact_start, latest, Key, Walk};
 
 /// `(floor(v), ceil(v))` per lane for `|v| < 2^22`, without libm's
 /// software rounding: adding and subtracting 1.5 * 2^23 rounds to the
@@ -128,101 +124,47 @@ impl Entry {
     }
 
     /// [`Walk::start`] for an origin outside `region` (and within
-    /// [`EXACT`]): `Some` of its answer, or `None` when a guess does not
-    /// check out. Kept out of line: inlined, it keeps `new` from being
-    /// inlined into the walk, and the common case of secondary rays (an
-    /// origin inside) would pay for returning the entry through memory.
+    /// [`EXACT`]): `Some` of its answer, or `None` when the entry cell's
+    /// check does not confirm its guess (`storage/walk/entry.rs`). On
+    /// lanes: the start rule's cell, the latest per-axis entry key, the
+    /// cell there, its exit crossings. Kept out of line: inlined, it keeps
+    /// `new` from being inlined into the walk, and the common case of
+    /// secondary rays (an origin inside) would pay for returning the entry
+    /// through memory.
     #[inline(never)]
     fn outside(ray: &Ray, region: &IAabb) -> Option<Option<Entry>> {
-        if ray.origin().abs().cmpge(glam::Vec3::splat(EXACT)).any() {
-            return None;
-        }
-        // Plain arrays: indexing them by axis costs no panic branch.
-        let o = ray.origin().to_array();
-        let inv = ray.inv_dir().to_array();
-        let d = ray.dir().to_array();
-        let (lo, hi) = (region.min.to_array(), region.max.to_array());
-        // The start rule, shared with `Walk::start`.
-        let (step, start, start_keys) = start_rule(ray);
-        let mut inside = [false; 3];
-        let crossing = |axis: usize, plane: i32| Key {
-            t: (plane as f32 - o[axis]) * inv[axis],
-            axis: axis as u8,
-        };
-        // The key entering the region on each axis; the latest of them
-        // enters the region.
-        let mut key_in = BEFORE;
-        let mut entry_axis = None;
-        for a in 0..3 {
-            inside[a] = (lo[a]..hi[a]).contains(&start[a]);
-            let key = if inside[a] {
-                start_keys[a]
-            } else if step[a] > 0 && start[a] < lo[a] {
-                crossing(a, lo[a])
-            } else if step[a] < 0 && start[a] >= hi[a] {
-                crossing(a, hi[a])
-            } else {
-                return Some(None);
-            };
-            if key_in.lt(key) {
-                key_in = key;
-                entry_axis = Some(a);
-            }
-        }
-        if key_in.t == f32::INFINITY {
+        let (o, d, inv) = ray.lanes();
+        let (up, down) = directions(ray);
+        let (start, on_plane) = exact_start(o, up, down)?;
+        let moving = up | down;
+        let (lo, hi) = (region.min.as_vec3a(), region.max.as_vec3a());
+        let inside = start.cmpge(lo) & start.cmplt(hi);
+        let toward = (up & start.cmplt(lo)) | (down & start.cmpge(hi));
+        if !(inside | toward).all() {
             return Some(None);
         }
-        let mut cell = start;
-        if let Some(a) = entry_axis.filter(|&a| !inside[a]) {
-            cell[a] = if step[a] > 0 { lo[a] } else { hi[a] - 1 };
-            for b in (0..3).filter(|&b| b != a && step[b] != 0) {
-                let s = step[b];
-                let (near, far) = if s > 0 {
-                    (lo[b], hi[b] - 1)
-                } else {
-                    (hi[b] - 1, lo[b])
-                };
-                let from = if inside[b] { start[b] } else { near };
-                let limit = far + s;
-                // The guess: the cell of the entry point, within
-                // `from..=limit`; checked, not trusted.
-                let at = o[b] + key_in.t * d[b];
-                // (NaN too: an entry time times a tiny direction.)
-                if at.is_nan() || at.abs() >= EXACT {
-                    return None;
-                }
-                let guess = at as i32 - i32::from((at as i32 as f32) > at);
-                let guess = if s > 0 {
-                    guess.clamp(from, limit)
-                } else {
-                    guess.clamp(limit, from)
-                };
-                // Exit plane of a cell: its upper side moving up.
-                let exit = |c: i32| if s > 0 { c + 1 } else { c };
-                let after_previous = guess == from || crossing(b, exit(guess - s)).lt(key_in);
-                let not_before = guess == limit || !crossing(b, exit(guess)).lt(key_in);
-                if !(after_previous && not_before) {
-                    return None;
-                }
-                cell[b] = guess;
-            }
-            if (0..3).any(|a| !(lo[a]..hi[a]).contains(&cell[a])) {
-                return Some(None);
-            }
+        // Per axis the key of entering the region: the start key where the
+        // start is inside (0 on a plane, else before everything), else the
+        // crossing of the near face; the latest of them enters the region.
+        let start_t = Vec3A::select(on_plane, Vec3A::ZERO, Vec3A::NEG_INFINITY);
+        let near = Vec3A::select(up, lo, hi);
+        let key = latest(Vec3A::select(inside, start_t, (near - o) * inv));
+        if key.t == f32::INFINITY {
+            return Some(None);
         }
-        let mut next_t = [f32::INFINITY; 3];
-        for a in 0..3 {
-            if step[a] != 0 {
-                let exit = if step[a] > 0 { cell[a] + 1 } else { cell[a] };
-                next_t[a] = crossing(a, exit).t;
-            }
+        let cell = entry_cell(o, d, inv, start, (up, down), (lo, hi), key)?;
+        if !(cell.cmpge(lo) & cell.cmplt(hi)).all() {
+            return Some(None);
         }
+        let exit = Vec3A::select(up, cell + 1.0, cell);
+        let next_t = Vec3A::select(moving, (exit - o) * inv, Vec3A::INFINITY);
         Some(Some(Entry {
-            cell: IVec3::from_array(cell),
-            moving: BVec3A::new(step[0] != 0, step[1] != 0, step[2] != 0),
-            down: BVec3A::new(step[0] < 0, step[1] < 0, step[2] < 0),
-            next_t: Vec3A::from_array(next_t),
-            key: key_in,
+            // (Within +-2^22, as the region.)
+            cell: whole_numbers(cell),
+            moving,
+            down,
+            next_t,
+            key,
         }))
     }
 }

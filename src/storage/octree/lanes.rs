@@ -9,7 +9,7 @@ use crate::geom::{Face, Ray};
 use crate::storage::octree::grid::{pow2, AXES};
 #[cfg(doc)]
 use crate::storage::walk::Walk;
-use crate::storage::walk::{directions, exact_start, latest, start_lanes, Key, EXACT};
+use crate::storage::walk::{directions, entry_cell, exact_start, latest, start_lanes, Key};
 
 /// A ray's walk, reduced to what the octree asks of it.
 #[derive(Clone, Copy, Debug)]
@@ -76,57 +76,20 @@ impl Lanes {
     }
 
     /// The cell a walk is in when it enters the box `[lo, hi)` (exact
-    /// floats) from outside at `enters` ([`Lanes::entry_of`]'s key), found
-    /// as the dense walk's entry finds it: on the entry axis the box's
-    /// first layer; on every other axis it moves along, the cell of the
-    /// entry point, checked with the crossings before and after it (the
-    /// previous cell's exit comes before `enters`, its own does not), so the
-    /// guess's rounding cannot move it; the start cell's coordinate on an
-    /// axis it does not move along. `None` when a guess does not check out,
-    /// the entry axis has the start inside, the origin is too far out for
-    /// exact cells, or the cell lies outside the box: the caller then asks
-    /// the walk itself.
+    /// floats) from outside at `enters` ([`Lanes::entry_of`]'s key), as
+    /// [`entry_cell`] finds it (outside the box when the ray misses it);
+    /// `None` when the caller must ask the walk.
     #[inline]
     pub(crate) fn entry_cell(&self, lo: Vec3A, hi: Vec3A, enters: Key) -> Option<Vec3A> {
-        if !self.origin.abs().cmplt(Vec3A::splat(EXACT)).all() {
-            return None;
-        }
-        let axis = Vec3A::splat(f32::from(enters.axis));
-        let on_entry_axis = AXES.cmpeq(axis);
-        let inside = self.start.cmpge(lo) & self.start.cmplt(hi);
-        if (inside & on_entry_axis).any() {
-            return None;
-        }
-        // The first cell from the near side, and one past the far one.
-        let near = Vec3A::select(self.up, lo, hi - 1.0);
-        let beyond = Vec3A::select(self.up, hi, lo - 1.0);
-        let from = Vec3A::select(inside, self.start, near);
-        let point = self.point_at(enters.t).floor();
-        let guess = Vec3A::select(
-            self.up,
-            point.max(from).min(beyond),
-            point.min(from).max(beyond),
-        );
-        // Whether the crossing of each lane's exit plane of `cell` comes
-        // before `enters`, ties to the lower axis.
-        let kt = Vec3A::splat(enters.t);
-        let exits_before = |cell: Vec3A| {
-            let plane = Vec3A::select(self.up, cell + 1.0, cell);
-            let t = (plane - self.origin) * self.inv_dir;
-            t.cmplt(kt) | (t.cmpeq(kt) & AXES.cmplt(axis))
-        };
-        let after_previous = guess.cmpeq(from) | exits_before(guess - self.step);
-        let not_before = guess.cmpeq(beyond) | !exits_before(guess);
-        let checked = (after_previous & not_before) | !self.moving | on_entry_axis;
-        if !checked.all() {
-            return None;
-        }
-        let cell = Vec3A::select(
-            on_entry_axis,
-            near,
-            Vec3A::select(self.moving, guess, self.start),
-        );
-        (cell.cmpge(lo) & cell.cmplt(hi)).all().then_some(cell)
+        entry_cell(
+            self.origin,
+            self.dir,
+            self.inv_dir,
+            self.start,
+            (self.up, self.down),
+            (lo, hi),
+            enters,
+        )
     }
 
     /// The key at which the ray enters `cell` (exact floats): the latest
@@ -320,6 +283,10 @@ mod tests {
             let walk = Walk::start(&ray, &bounds);
             if let Some(cell) = lanes.entry_cell(lo, hi, key) {
                 answered += 1;
+                if !(cell.cmpge(lo) & cell.cmplt(hi)).all() {
+                    assert!(walk.is_none(), "{ray:?} {bounds:?}: entered");
+                    continue;
+                }
                 let walk = walk.expect("the lanes found an entry cell");
                 assert_eq!(cell.as_ivec3(), walk.cell(), "{ray:?} {bounds:?}");
                 assert_eq!(key, walk.key(), "{ray:?} {bounds:?}");

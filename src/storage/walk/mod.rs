@@ -38,12 +38,14 @@ use glam::{IVec3, Vec3, Vec3A};
 
 use crate::geom::{Face, IAabb};
 
+mod entry;
 mod guess;
 mod start;
 #[cfg(test)]
 pub(crate) mod test_rays;
 
-pub(crate) use start::{directions, exact_start, start_lanes, start_rule, EXACT};
+pub(crate) use entry::entry_cell;
+pub(crate) use start::{directions, exact_start, start_lanes, EXACT};
 
 /// A crossing's place in the ray's visiting order: by time, then by axis.
 #[derive(Clone, Copy, Debug, PartialEq)]

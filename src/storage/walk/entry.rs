@@ -1,0 +1,77 @@
+//! Where a ray that starts outside a box enters it, on float lanes: the
+//! cell the walk's own entry (`Walk::start`) settles on, found by a guess
+//! that two crossings per axis confirm. The dense walk and the octree both
+//! begin there.
+
+use glam::{BVec3A, Vec3A};
+
+use crate::storage::walk::{Key, EXACT};
+
+/// Lane indices as floats, to compare axes on lanes.
+const AXES: Vec3A = Vec3A::new(0.0, 1.0, 2.0);
+
+/// The cell (exact floats) a walk of the ray from `origin` (start cell
+/// `start`, moving up along `up` and down along `down`, crossing planes at
+/// `(plane - origin) * inv_dir`) is in when it enters the box `[lo, hi)`
+/// at `enters`, the latest of its per-axis entry keys, from outside. On
+/// the entry axis that is the box's first layer. On every other axis it
+/// moves along, it is the first cell from the start (or the near side on)
+/// whose exit crossing does not come before `enters`: crossings only grow
+/// along an axis, so that cell is unique; the entry point's cell is the
+/// guess, and the crossings before and after it confirm it, so the
+/// point's rounding cannot move it. On an axis the ray does not move
+/// along, the start cell's coordinate.
+///
+/// The cell may lie outside the box: the ray then passes the entry plane
+/// beside the box and misses it. `None` when a guess does not check out,
+/// the start is inside on the entry axis or the origin is too far out for
+/// exact cells: the caller then asks `Walk::start`.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn entry_cell(
+    origin: Vec3A,
+    dir: Vec3A,
+    inv_dir: Vec3A,
+    start: Vec3A,
+    (up, down): (BVec3A, BVec3A),
+    (lo, hi): (Vec3A, Vec3A),
+    enters: Key,
+) -> Option<Vec3A> {
+    if !origin.abs().cmplt(Vec3A::splat(EXACT)).all() {
+        return None;
+    }
+    let moving = up | down;
+    let axis = Vec3A::splat(f32::from(enters.axis));
+    let on_entry_axis = AXES.cmpeq(axis);
+    let inside = start.cmpge(lo) & start.cmplt(hi);
+    if (inside & on_entry_axis).any() {
+        return None;
+    }
+    let one = |mask: BVec3A| Vec3A::select(mask, Vec3A::ONE, Vec3A::ZERO);
+    let step = one(up) - one(down);
+    // The first cell from the near side, and one past the far one.
+    let near = Vec3A::select(up, lo, hi - 1.0);
+    let beyond = Vec3A::select(up, hi, lo - 1.0);
+    let from = Vec3A::select(inside, start, near);
+    let point = (origin + dir * enters.t).floor();
+    let guess = Vec3A::select(up, point.max(from).min(beyond), point.min(from).max(beyond));
+    // Whether each lane's crossing of the exit plane of `cell` comes
+    // before `enters`, ties to the lower axis.
+    let kt = Vec3A::splat(enters.t);
+    let exits_before = |cell: Vec3A| {
+        let plane = Vec3A::select(up, cell + 1.0, cell);
+        let t = (plane - origin) * inv_dir;
+        t.cmplt(kt) | (t.cmpeq(kt) & AXES.cmplt(axis))
+    };
+    let after_previous = guess.cmpeq(from) | exits_before(guess - step);
+    let not_before = guess.cmpeq(beyond) | !exits_before(guess);
+    let checked = (after_previous & not_before) | !moving | on_entry_axis;
+    if !checked.all() {
+        return None;
+    }
+    Some(Vec3A::select(
+        on_entry_axis,
+        near,
+        Vec3A::select(moving, guess, start),
+    ))
+}
