@@ -34,8 +34,8 @@ fn floor_and_ceil(v: Vec3A) -> (Vec3A, Vec3A) {
     )
 }
 
-/// `v` (whole numbers with `|v| < 2^22`) as integers, read from the bits
-/// of `v + 1.5 * 2^23`: that sum lies in `(2^23, 2^24)`, where the float's
+/// `v` (whole numbers with `|v| <= 2^22`) as integers, read from the bits
+/// of `v + 1.5 * 2^23`: that sum lies in `[2^23, 2^24]`, where the float's
 /// last mantissa bit is worth 1, so its bits are those of 1.5 * 2^23 plus
 /// `v`. Exact, without the saturating casts' range checks.
 #[inline]
@@ -123,14 +123,15 @@ impl Entry {
         })
     }
 
-    /// [`Walk::start`] for an origin outside `region` (and within
-    /// [`EXACT`]): `Some` of its answer, or `None` when the entry cell's
-    /// check does not confirm its guess (`storage/walk/entry.rs`). On
-    /// lanes: the start rule's cell, the latest per-axis entry key, the
-    /// cell there, its exit crossings. Kept out of line: inlined, it keeps
-    /// `new` from being inlined into the walk, and the common case of
-    /// secondary rays (an origin inside) would pay for returning the entry
-    /// through memory.
+    /// [`Walk::start`] for an origin outside `region` (and within 2^23 on
+    /// every axis): `Some` of its answer, or `None` for `Walk::start` to
+    /// find it: when the entry cell's check does not confirm its guess
+    /// (`storage/walk/entry.rs`), or the start cell is inside on every
+    /// axis (an origin on the box's face). On lanes: the start rule's
+    /// cell, the latest per-axis entry key, the cell there, its exit
+    /// crossings. Kept out of line: inlined, it keeps `new` from being
+    /// inlined into the walk, and the common case of secondary rays (an
+    /// origin inside) would pay for returning the entry through memory.
     #[inline(never)]
     fn outside(ray: &Ray, region: &IAabb) -> Option<Option<Entry>> {
         let (o, d, inv) = ray.lanes();
