@@ -118,3 +118,60 @@ fn the_dense_walk_finds_the_single_step_walks_hit() {
     }
     assert!(hits > 10_000, "{hits} hits");
 }
+
+/// Where the dense walk enters a box, from inside or outside, is where the
+/// single-step walk enters it: the same cell, entry key and next
+/// crossings, for the edge-case rays above and boxes around them.
+#[test]
+fn the_entry_is_the_single_step_walks_entry() {
+    use crate::storage::dense::entry::Entry;
+    use crate::storage::walk::Walk;
+
+    let mut rng = Rng(0x2545_F491_4F6C_DD1D);
+    let (mut entered, mut from_outside) = (0, 0);
+    for i in 0..200_000 {
+        let lo = IVec3::new(
+            rng.below(9) as i32 - 4,
+            rng.below(9) as i32 - 4,
+            rng.below(9) as i32 - 4,
+        );
+        let size = IVec3::new(
+            1 + rng.below(8) as i32,
+            1 + rng.below(8) as i32,
+            1 + rng.below(8) as i32,
+        );
+        let region = IAabb::new(lo, lo + size);
+        let ray = ray(&mut rng, &region);
+        let walk = Walk::start(&ray, &region);
+        let entry = Entry::new(&ray, &region);
+        assert_eq!(
+            entry.is_some(),
+            walk.is_some(),
+            "ray {i}: {ray:?} {region:?}"
+        );
+        let (Some(entry), Some(walk)) = (entry, walk) else {
+            continue;
+        };
+        entered += 1;
+        if !region.contains(ray.origin().floor().as_ivec3()) {
+            from_outside += 1;
+        }
+        assert_eq!(entry.cell, walk.cell(), "ray {i}: {ray:?} {region:?}");
+        assert_eq!(entry.key, walk.key(), "ray {i}: {ray:?} {region:?}");
+        let step = walk.step_dir();
+        let next = walk.next_t();
+        for a in 0..3 {
+            if step[a] != 0 {
+                assert_eq!(
+                    entry.next_t[a].to_bits(),
+                    next[a].to_bits(),
+                    "ray {i}: {ray:?} {region:?} axis {a}"
+                );
+            }
+        }
+    }
+    assert!(
+        entered > 10_000 && from_outside > 5_000,
+        "{entered} entered, {from_outside} from outside"
+    );
+}
