@@ -16,7 +16,11 @@
 use glam::{BVec3A, IVec3, Vec3A};
 
 use crate::geom::{IAabb, Ray};
-use crate::storage::walk::{directions, entry_cell, exact_start, latest, Key, Walk};
+use crate::storage::walk::{directions, entry_cell, entry_key, exact_start, Key, Walk};
+
+/// 1.5 * 2^23: added to a float below 2^22 in size, a sum whose last
+/// mantissa bit is worth 1.
+const ROUND: f32 = 12_582_912.0;
 
 /// `(floor(v), ceil(v))` per lane for `|v| < 2^22`, without libm's
 /// software rounding: adding and subtracting 1.5 * 2^23 rounds to the
@@ -25,7 +29,6 @@ use crate::storage::walk::{directions, entry_cell, exact_start, latest, Key, Wal
 /// `ceil`, but for the sign of a zero, which no use below can tell.
 #[inline]
 fn floor_and_ceil(v: Vec3A) -> (Vec3A, Vec3A) {
-    const ROUND: f32 = 12_582_912.0; // 1.5 * 2^23
     let nearest = (v + ROUND) - ROUND;
     let one = |mask: BVec3A| Vec3A::select(mask, Vec3A::ONE, Vec3A::ZERO);
     (
@@ -40,7 +43,6 @@ fn floor_and_ceil(v: Vec3A) -> (Vec3A, Vec3A) {
 /// `v`. Exact, without the saturating casts' range checks.
 #[inline]
 pub(super) fn whole_numbers(v: Vec3A) -> IVec3 {
-    const ROUND: f32 = 12_582_912.0; // 1.5 * 2^23
     let bits = (v + ROUND)
         .to_array()
         .map(|x| x.to_bits().wrapping_sub(ROUND.to_bits()) as i32);
@@ -139,24 +141,16 @@ impl Entry {
         let (start, on_plane) = exact_start(o, up, down)?;
         let moving = up | down;
         let (lo, hi) = (region.min.as_vec3a(), region.max.as_vec3a());
-        let inside = start.cmpge(lo) & start.cmplt(hi);
-        let toward = (up & start.cmplt(lo)) | (down & start.cmpge(hi));
-        if !(inside | toward).all() {
-            return Some(None);
-        }
-        // Per axis the key of entering the region: the start key where the
-        // start is inside (0 on a plane, else before everything), else the
-        // crossing of the near face; the latest of them enters the region.
         let start_t = Vec3A::select(on_plane, Vec3A::ZERO, Vec3A::NEG_INFINITY);
-        let near = Vec3A::select(up, lo, hi);
-        let key = latest(Vec3A::select(inside, start_t, (near - o) * inv));
+        let Some((key, _)) = entry_key(o, inv, (start, start_t), (up, down), (lo, hi)) else {
+            return Some(None);
+        };
         if key.t == f32::INFINITY {
             return Some(None);
         }
-        let cell = entry_cell(o, d, inv, start, (up, down), (lo, hi), key)?;
-        if !(cell.cmpge(lo) & cell.cmplt(hi)).all() {
+        let Some(cell) = entry_cell(o, d, inv, start, (up, down), (lo, hi), key)? else {
             return Some(None);
-        }
+        };
         let exit = Vec3A::select(up, cell + 1.0, cell);
         let next_t = Vec3A::select(moving, (exit - o) * inv, Vec3A::INFINITY);
         Some(Some(Entry {

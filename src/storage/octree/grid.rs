@@ -8,9 +8,6 @@ use glam::{IVec3, Vec3A};
 
 use crate::storage::walk::EXACT;
 
-/// Lane indices as floats, to turn an axis into a lane mask.
-pub(super) const AXES: Vec3A = Vec3A::new(0.0, 1.0, 2.0);
-
 /// 2^log as an exact float, for `log` below 128.
 #[inline]
 pub(super) fn pow2(log: u32) -> f32 {

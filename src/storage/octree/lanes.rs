@@ -6,10 +6,12 @@
 use glam::{BVec3A, Vec3A};
 
 use crate::geom::{Face, Ray};
-use crate::storage::octree::grid::{pow2, AXES};
+use crate::storage::octree::grid::pow2;
 #[cfg(doc)]
 use crate::storage::walk::Walk;
-use crate::storage::walk::{directions, entry_cell, exact_start, latest, start_lanes, Key};
+use crate::storage::walk::{
+    directions, entry_cell, entry_key, exact_start, latest, start_lanes, Key, AXES,
+};
 
 /// A ray's walk, reduced to what the octree asks of it.
 #[derive(Clone, Copy, Debug)]
@@ -58,29 +60,27 @@ impl Lanes {
     }
 
     /// The key at which the ray enters the box `[lo, hi)` (exact floats),
-    /// as the walk's entry computes it: the latest of the per-axis entries,
-    /// a start key on an axis where the start cell is inside, and whether
-    /// it is inside on every axis (then the start cell is where the walk
-    /// begins). `None` when the start is outside on an axis the ray does
-    /// not move toward; `+inf` when it never gets in.
+    /// as the walk's entry computes it ([`entry_key`]), and whether the
+    /// start cell is inside on every axis (then the walk begins there).
+    /// `None` when the start is outside on an axis the ray does not move
+    /// toward; `+inf` when it never gets in.
     #[inline]
     pub(crate) fn entry_of(&self, lo: Vec3A, hi: Vec3A) -> Option<(Key, bool)> {
-        let inside = self.start.cmpge(lo) & self.start.cmplt(hi);
-        let toward = (self.up & self.start.cmplt(lo)) | (self.down & self.start.cmpge(hi));
-        if !(inside | toward).all() {
-            return None;
-        }
-        let near = Vec3A::select(self.up, lo, hi);
-        let t = Vec3A::select(inside, self.start_t, (near - self.origin) * self.inv_dir);
-        Some((latest(t), inside.all()))
+        entry_key(
+            self.origin,
+            self.inv_dir,
+            (self.start, self.start_t),
+            (self.up, self.down),
+            (lo, hi),
+        )
     }
 
     /// The cell a walk is in when it enters the box `[lo, hi)` (exact
     /// floats) from outside at `enters` ([`Lanes::entry_of`]'s key), as
-    /// [`entry_cell`] finds it (outside the box when the ray misses it);
+    /// [`entry_cell`] finds it (`Some(None)`: the ray misses the box);
     /// `None` when the caller must ask the walk.
     #[inline]
-    pub(crate) fn entry_cell(&self, lo: Vec3A, hi: Vec3A, enters: Key) -> Option<Vec3A> {
+    pub(crate) fn entry_cell(&self, lo: Vec3A, hi: Vec3A, enters: Key) -> Option<Option<Vec3A>> {
         entry_cell(
             self.origin,
             self.dir,
@@ -283,10 +283,10 @@ mod tests {
             let walk = Walk::start(&ray, &bounds);
             if let Some(cell) = lanes.entry_cell(lo, hi, key) {
                 answered += 1;
-                if !(cell.cmpge(lo) & cell.cmplt(hi)).all() {
+                let Some(cell) = cell else {
                     assert!(walk.is_none(), "{ray:?} {bounds:?}: entered");
                     continue;
-                }
+                };
                 let walk = walk.expect("the lanes found an entry cell");
                 assert_eq!(cell.as_ivec3(), walk.cell(), "{ray:?} {bounds:?}");
                 assert_eq!(key, walk.key(), "{ray:?} {bounds:?}");

@@ -107,11 +107,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let (cell, key) = if starts_inside {
             (lanes.start.as_ivec3(), enters)
         } else if let Some(cell) = lanes.entry_cell(region_lo, region_hi, enters) {
-            // Beside the region on an axis: the ray passes it by.
-            if !(cell.cmpge(region_lo) & cell.cmplt(region_hi)).all() {
-                return None;
-            }
-            (cell.as_ivec3(), enters)
+            // (None: beside the region on an axis, the ray passes it by.)
+            (cell?.as_ivec3(), enters)
         } else {
             let mut walk = Walk::unplaced(ray, &region);
             walk.place_from(t_start)?;

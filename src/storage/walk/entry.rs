@@ -1,14 +1,41 @@
-//! Where a ray that starts outside a box enters it, on float lanes: the
-//! cell the walk's own entry (`Walk::start`) settles on, found by a guess
-//! that two crossings per axis confirm. The dense walk and the octree both
-//! begin there.
+//! Where a ray enters a box, on float lanes: the key the walk's own entry
+//! (`Walk::start`) enters by, and, from outside, the cell it settles on,
+//! found by a guess that two crossings per axis confirm. The dense walk
+//! and the octree both begin there.
 
 use glam::{BVec3A, Vec3A};
 
-use crate::storage::walk::{Key, EXACT};
+use crate::storage::walk::{latest, Key, EXACT};
 
-/// Lane indices as floats, to compare axes on lanes.
-const AXES: Vec3A = Vec3A::new(0.0, 1.0, 2.0);
+/// Lane indices as floats, to turn an axis into a lane mask.
+pub(crate) const AXES: Vec3A = Vec3A::new(0.0, 1.0, 2.0);
+
+/// The key at which a walk of the ray from `origin` (start cell `start`,
+/// start keys at `start_t`: 0 on an axis whose entry plane the origin lies
+/// on, else before everything; moving up along `up` and down along
+/// `down`) enters the box `[lo, hi)` (exact floats), as `Walk::start`
+/// computes it: the latest of the per-axis entries, a start key on an
+/// axis where the start cell is inside, and whether it is inside on every
+/// axis (then the start cell is where the walk begins). `None` when the
+/// start is outside on an axis the ray does not move toward; `+inf` when
+/// it never gets in.
+#[inline]
+pub(crate) fn entry_key(
+    origin: Vec3A,
+    inv_dir: Vec3A,
+    (start, start_t): (Vec3A, Vec3A),
+    (up, down): (BVec3A, BVec3A),
+    (lo, hi): (Vec3A, Vec3A),
+) -> Option<(Key, bool)> {
+    let inside = start.cmpge(lo) & start.cmplt(hi);
+    let toward = (up & start.cmplt(lo)) | (down & start.cmpge(hi));
+    if !(inside | toward).all() {
+        return None;
+    }
+    let near = Vec3A::select(up, lo, hi);
+    let t = Vec3A::select(inside, start_t, (near - origin) * inv_dir);
+    Some((latest(t), inside.all()))
+}
 
 /// The cell (exact floats) a walk of the ray from `origin` (start cell
 /// `start`, moving up along `up` and down along `down`, crossing planes at
@@ -22,10 +49,10 @@ const AXES: Vec3A = Vec3A::new(0.0, 1.0, 2.0);
 /// point's rounding cannot move it. On an axis the ray does not move
 /// along, the start cell's coordinate.
 ///
-/// The cell may lie outside the box: the ray then passes the entry plane
-/// beside the box and misses it. `None` when a guess does not check out,
-/// the start is inside on the entry axis or the origin is too far out for
-/// exact cells: the caller then asks `Walk::start`.
+/// `Some(None)` when that cell lies outside the box: the ray then passes
+/// the entry plane beside the box and misses it. `None` when a guess does
+/// not check out, the start is inside on the entry axis or the origin is
+/// too far out for exact cells: the caller then asks `Walk::start`.
 #[inline]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn entry_cell(
@@ -36,7 +63,7 @@ pub(crate) fn entry_cell(
     (up, down): (BVec3A, BVec3A),
     (lo, hi): (Vec3A, Vec3A),
     enters: Key,
-) -> Option<Vec3A> {
+) -> Option<Option<Vec3A>> {
     if !origin.abs().cmplt(Vec3A::splat(EXACT)).all() {
         return None;
     }
@@ -69,9 +96,6 @@ pub(crate) fn entry_cell(
     if !checked.all() {
         return None;
     }
-    Some(Vec3A::select(
-        on_entry_axis,
-        near,
-        Vec3A::select(moving, guess, start),
-    ))
+    let cell = Vec3A::select(on_entry_axis, near, Vec3A::select(moving, guess, start));
+    Some((cell.cmpge(lo) & cell.cmplt(hi)).all().then_some(cell))
 }

@@ -44,7 +44,7 @@ mod start;
 #[cfg(test)]
 pub(crate) mod test_rays;
 
-pub(crate) use entry::entry_cell;
+pub(crate) use entry::{entry_cell, entry_key, AXES};
 pub(crate) use start::{directions, exact_start, start_lanes, EXACT};
 
 /// A crossing's place in the ray's visiting order: by time, then by axis.
