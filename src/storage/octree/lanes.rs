@@ -7,6 +7,7 @@ use glam::{BVec3A, Vec3A};
 
 use crate::geom::{Face, Ray};
 use crate::storage::octree::grid::pow2;
+use crate::storage::octree::placed::Placed;
 #[cfg(doc)]
 use crate::storage::walk::Walk;
 use crate::storage::walk::{
@@ -117,11 +118,12 @@ impl Lanes {
         }
     }
 
-    /// The point the ray reaches at distance `t`, rounded: a guess of where
-    /// it is, for callers that decide by key comparisons.
+    /// The point the ray reaches at distance `t` (`t > 0`), rounded, with
+    /// the margin within which that rounding and every crossing time's
+    /// stay ([`Placed`]).
     #[inline]
-    pub(crate) fn point_at(&self, t: f32) -> Vec3A {
-        self.origin + self.dir * t
+    pub(crate) fn placed_at(&self, t: f32) -> Placed {
+        Placed::new(self.origin, self.dir * t)
     }
 
     /// Whether the cell the walk is in at `key` lies in the box `[lo, hi)`

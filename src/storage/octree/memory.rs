@@ -12,6 +12,8 @@ use crate::scene::{WalkMemory, MEMORY_PATH};
 use crate::storage::octree::grid::{pow2, whole};
 use crate::storage::octree::lanes::Lanes;
 use crate::storage::octree::node::{brick_bit, child_rank, Node, NodeKind};
+#[cfg(doc)]
+use crate::storage::octree::placed::Placed;
 use crate::storage::octree::OctreeScene;
 use crate::storage::walk::{Key, Walk};
 
@@ -53,6 +55,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// ray is in that cube at that key (the point's rounding can cross a
     /// face), else to the root cube; the descent narrows it by the same key
     /// comparisons as far as the tree needs, and no cell is settled first.
+    /// Whether it is inside the region and inside that cube is first asked
+    /// of the point itself ([`Placed`]): a box holding it with the rounding
+    /// margin holds the walk's cell too, and no key is computed for it.
     /// A ray entering the region later begins in the cell it enters by
     /// (its start cell when it starts inside), as single steps would: from
     /// outside, the cell [`Lanes::entry_cell`] checks, or where the walk's
@@ -69,10 +74,6 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         memory: &mut WalkMemory,
     ) -> Option<Begun> {
         let (region_lo, region_hi) = (region.min.as_vec3a(), region.max.as_vec3a());
-        let (enters, starts_inside) = lanes.entry_of(region_lo, region_hi)?;
-        if enters.t == f32::INFINITY {
-            return None;
-        }
         let min = self.bounds.min;
         let min_f = min.as_vec3a();
         let root_log = self.root_size.trailing_zeros();
@@ -80,16 +81,40 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             t: t_start,
             axis: 0,
         };
-        if t_start > 0.0 && enters.lt(later) {
-            if leaves_region.lt(later) {
+        // A point inside the region by the rounding margin says without
+        // any crossing that the ray has entered and not left it by then
+        // (most primary rays, placed at their tile's clear distance); else
+        // the keys decide.
+        let placed = (t_start > 0.0).then(|| lanes.placed_at(t_start));
+        let surely_inside = placed.is_some_and(|p| p.surely_in(region_lo, region_hi));
+        let entry = if surely_inside {
+            None
+        } else {
+            let (enters, starts_inside) = lanes.entry_of(region_lo, region_hi)?;
+            if enters.t == f32::INFINITY {
                 return None;
             }
-            let point = lanes.point_at(t_start).floor();
+            Some((enters, starts_inside))
+        };
+        let placed_later = match entry {
+            None => placed,
+            Some((enters, _)) if t_start > 0.0 && enters.lt(later) => {
+                if leaves_region.lt(later) {
+                    return None;
+                }
+                placed
+            }
+            Some(_) => None,
+        };
+        if let Some(placed) = placed_later {
+            let point = placed.point.floor();
             let guess = whole((point.clamp(region_lo, region_hi - 1.0) - min_f).into());
             let (depth, node) = self.recall(guess, memory);
             let log = root_log - depth as u32;
             let corner = (min + (guess >> log << log)).as_vec3a();
-            let (depth, node, log, corner) = if lanes.holds(corner, corner + pow2(log), later) {
+            let hi = corner + pow2(log);
+            let holds = placed.surely_in(corner, hi) || lanes.holds(corner, hi, later);
+            let (depth, node, log, corner) = if holds {
                 (depth, node, log, corner)
             } else {
                 (0, self.root, root_log, min_f)
@@ -104,6 +129,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                 placed_key: later,
             });
         }
+        // Begun at the region's entry: `entry` is known here.
+        let (enters, starts_inside) = entry?;
         let (cell, key) = if starts_inside {
             (lanes.start.as_ivec3(), enters)
         } else if let Some(cell) = lanes.entry_cell(region_lo, region_hi, enters) {

@@ -30,6 +30,7 @@ mod grid;
 pub(crate) mod lanes;
 mod memory;
 pub(crate) mod node;
+mod placed;
 pub(crate) mod trace;
 
 /// How many nodes and material bytes an octree needs
