@@ -123,7 +123,7 @@ impl Lanes {
     /// stay ([`Placed`]).
     #[inline]
     pub(crate) fn placed_at(&self, t: f32) -> Placed {
-        Placed::new(self.origin, self.dir * t)
+        Placed::at(self.origin, self.dir, self.moving, t)
     }
 
     /// Whether the cell the walk is in at `key` lies in the box `[lo, hi)`
