@@ -223,7 +223,7 @@ impl Lanes {
 
 #[cfg(test)]
 mod tests {
-    use glam::{IVec3, Vec3A};
+    use glam::Vec3A;
 
     use super::Lanes;
     use crate::storage::walk::test_rays::Rng;
@@ -345,14 +345,9 @@ mod tests {
                 continue;
             };
             let lanes = Lanes::of(&ray);
-            let t = if rng.next() % 2 == 0 {
-                rng.range(0.0, 90.0)
-            } else {
-                // Exactly a crossing: the key (t, x) ties with it.
-                let axis = (rng.next() % 3) as usize;
-                let plane = rng.int(-40, 40) as f32;
-                (plane - ray.origin()[axis]) * ray.inv_dir()[axis]
-            };
+            // Random, or exactly a crossing (the key (t, x) ties with it),
+            // or next to one.
+            let t = rng.distance_along(&ray);
             if !(t > 0.0 && t.is_finite()) {
                 continue;
             }
@@ -364,8 +359,7 @@ mod tests {
             }
             let cell = walk.cell();
             for _ in 0..8 {
-                let lo = cell + IVec3::new(rng.int(-3, 2), rng.int(-3, 2), rng.int(-3, 2));
-                let hi = lo + IVec3::new(rng.int(1, 4), rng.int(1, 4), rng.int(1, 4));
+                let (lo, hi) = rng.box_near(cell);
                 let contains = cell.cmpge(lo).all() && cell.cmplt(hi).all();
                 let (lo_f, hi_f) = (lo.as_vec3a(), hi.as_vec3a());
                 assert_eq!(

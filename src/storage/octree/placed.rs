@@ -105,16 +105,7 @@ mod tests {
             let Some(ray) = rng.ray_at(bounds) else {
                 continue;
             };
-            let t = match rng.next() % 4 {
-                0 => rng.range(0.0, 90.0),
-                // A crossing, or the floats either side of one.
-                k => {
-                    let axis = (rng.next() % 3) as usize;
-                    let plane = rng.int(-40, 40) as f32;
-                    let t = (plane - ray.origin()[axis]) * ray.inv_dir()[axis];
-                    [t, t.next_down(), t.next_up()][k as usize - 1]
-                }
-            };
+            let t = rng.distance_along(&ray);
             if !(t > 0.0 && t.is_finite()) {
                 continue;
             }
@@ -132,8 +123,7 @@ mod tests {
             }
             let cell = walk.cell();
             for _ in 0..8 {
-                let lo = cell + IVec3::new(rng.int(-3, 2), rng.int(-3, 2), rng.int(-3, 2));
-                let hi = lo + IVec3::new(rng.int(1, 4), rng.int(1, 4), rng.int(1, 4));
+                let (lo, hi) = rng.box_near(cell);
                 let contains = cell.cmpge(lo).all() && cell.cmplt(hi).all();
                 if placed.surely_in(lo.as_vec3a(), hi.as_vec3a()) {
                     assert!(contains, "{ray:?} {t} {lo} {hi}: cell {cell}");

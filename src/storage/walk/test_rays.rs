@@ -32,6 +32,29 @@ impl Rng {
         lo + (self.next() % (hi - lo) as u64) as i32
     }
 
+    /// A box of 1 to 3 cells a side within 3 cells of `cell`, holding it or
+    /// not: the boxes a walk's cell is tested against.
+    pub(crate) fn box_near(&mut self, cell: IVec3) -> (IVec3, IVec3) {
+        let lo = cell + IVec3::new(self.int(-3, 2), self.int(-3, 2), self.int(-3, 2));
+        let hi = lo + IVec3::new(self.int(1, 4), self.int(1, 4), self.int(1, 4));
+        (lo, hi)
+    }
+
+    /// A distance along `ray`: random below 90, or exactly the crossing of
+    /// a plane within 40 of the origin, or the float just before or after
+    /// it, where keys tie or nearly tie. Not always positive or finite.
+    pub(crate) fn distance_along(&mut self, ray: &Ray) -> f32 {
+        match self.next() % 4 {
+            0 => self.range(0.0, 90.0),
+            k => {
+                let axis = (self.next() % 3) as usize;
+                let plane = self.int(-40, 40) as f32;
+                let t = (plane - ray.origin()[axis]) * ray.inv_dir()[axis];
+                [t, t.next_down(), t.next_up()][k as usize - 1]
+            }
+        }
+    }
+
     /// A coordinate in `-span..span` that is often an integer or a half,
     /// as rays of a renderer on grid cameras are.
     pub(crate) fn coordinate(&mut self, span: f32) -> f32 {
