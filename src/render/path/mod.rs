@@ -32,7 +32,7 @@ use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{pack, pack_alpha, sky, to_u8, SKY_HORIZON};
 use crate::render::stats::RayStats;
-use crate::scene::Scene;
+use crate::scene::{Scene, WalkMemory};
 
 use bsdf::{glossy, microfacet};
 use glass::{through_glass, Glass};
@@ -131,13 +131,16 @@ pub(crate) struct Path<'s, 'm, const GLASS: bool, const METAL: bool, const EMIT:
 
 impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS, METAL, EMIT> {
     /// Pixel `(x, y)`: the mean radiance of its samples, and the rays
-    /// traced (the kernel's `pixel`).
-    pub(crate) fn trace_pixel<S: Scene + ?Sized>(
+    /// traced (the kernel's `pixel`). Its camera rays' walks share `memory`
+    /// with the neighbouring pixels' (where a walk begins, never what it
+    /// hits); bounce and light rays go their own ways and walk alone.
+    pub(crate) fn trace_pixel<'s, S: Scene + ?Sized>(
         &self,
-        scene: &S,
+        scene: &'s S,
         x: u32,
         y: u32,
         t_start: f32,
+        memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats) {
         let samples = u32::from(self.setup.samples.max(1));
         let mut sum = Vec3::ZERO;
@@ -166,7 +169,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
                 event: 0,
             };
             let hits = stats.primary_hits;
-            let radiance = self.radiance(scene, &ray, t_start, &mut rng, &mut stats);
+            let radiance = self.radiance(scene, &ray, t_start, memory, &mut rng, &mut stats);
             let missed = stats.primary_hits == hits;
             let radiance = match (missed, background) {
                 (true, Some(color)) => color,
@@ -195,17 +198,18 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
 impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS, METAL, EMIT> {
     /// The radiance along one camera ray, which hits nothing before
     /// `t_start`.
-    fn radiance<S: Scene + ?Sized>(
+    fn radiance<'s, S: Scene + ?Sized>(
         &self,
-        scene: &S,
+        scene: &'s S,
         camera_ray: &Ray,
         t_start: f32,
+        memory: &mut WalkMemory<'s>,
         rng: &mut Rng,
         stats: &mut RayStats,
     ) -> Vec3 {
         let setup = self.setup;
         let mut ray = *camera_ray;
-        let mut hit = scene.trace_from(&ray, t_start).hit;
+        let mut hit = scene.trace_from_with(&ray, t_start, memory).hit;
         *stats += primary(hit.as_ref());
         let first_t = hit.map(|h| h.t);
         let mut beta = Vec3::ONE;

@@ -99,9 +99,9 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Kernel
         x: u32,
         y: u32,
         t_start: f32,
-        _: &mut Memories<'s>,
+        memory: &mut Memories<'s>,
     ) -> (u32, RayStats) {
-        self.trace_pixel(scene, x, y, t_start)
+        self.trace_pixel(scene, x, y, t_start, &mut memory.primary)
     }
 }
 

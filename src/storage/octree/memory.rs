@@ -225,3 +225,40 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         material
     }
 }
+
+#[cfg(all(test, feature = "alloc"))]
+mod tests {
+    use glam::Vec3;
+
+    use crate::geom::{IAabb, Ray};
+    use crate::material::Materials;
+    use crate::scene::{Scene, WalkMemory};
+    use crate::source::terrain::VoxelGenerator;
+    use crate::storage::octree::OctreeScene;
+    use crate::with_materials::WithMaterials;
+
+    /// A storage wrapped with materials still gets coherent rays' memory
+    /// (it claims it through the wrapper), and the hits stay its own.
+    #[test]
+    fn walks_through_the_wrapper_share_the_storages_memory() {
+        let storage = OctreeScene::build(&VoxelGenerator::new(3), IAabb::centered(24)).unwrap();
+        let diffuse = Materials::all_diffuse();
+        let wrapped = WithMaterials::new(&storage, &diffuse, &[]);
+        let owner = &storage as *const OctreeScene<_, _> as usize;
+        let origin = Vec3::new(20.0, 22.0, 19.5);
+        let (mut from, mut within) = (WalkMemory::new(), WalkMemory::new());
+        let mut hits = 0;
+        for i in 0..64 {
+            let dir = Vec3::new(-1.0 + i as f32 / 100.0, -0.8, -0.9 + i as f32 / 70.0);
+            let ray = Ray::new(origin, dir).unwrap();
+            let traced = wrapped.trace_from_with(&ray, 0.5, &mut from);
+            assert_eq!(traced.hit, storage.trace_from(&ray, 0.5).hit, "{ray:?}");
+            let near = wrapped.trace_within_with(&ray, 30.0, &mut within);
+            assert_eq!(near, storage.trace_within(&ray, 30.0), "{ray:?}");
+            hits += usize::from(traced.hit.is_some());
+        }
+        assert!(hits > 32, "only {hits} rays hit the terrain");
+        assert_eq!(from.owner, owner, "trace_from_with forgot the memory");
+        assert_eq!(within.owner, owner, "trace_within_with forgot the memory");
+    }
+}
