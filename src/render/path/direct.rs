@@ -11,18 +11,22 @@ use crate::render::path::bsdf::cone;
 use crate::render::path::{PathSetup, Rng};
 use crate::render::rays::secondary;
 use crate::render::stats::RayStats;
-use crate::scene::{Hit, Scene};
+use crate::scene::{Hit, Scene, WalkMemory};
 
 /// The direct light at `hit` (entered through `face`) as a factor of the
-/// albedo: the outgoing radiance of a white Lambertian face there.
-pub(super) fn light<S: Scene + ?Sized, const EMIT: bool>(
-    scene: &S,
+/// albedo: the outgoing radiance of a white Lambertian face there. Its
+/// rays toward the lights walk with `memory`, which neighbouring hits'
+/// light rays share (where a walk begins, never what it hits).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn light<'s, S: Scene + ?Sized, const EMIT: bool>(
+    scene: &'s S,
     setup: &PathSetup<'_>,
     ray: &Ray,
     hit: &Hit,
     face: Face,
     rng: &mut Rng,
     stats: &mut RayStats,
+    memory: &mut WalkMemory<'s>,
 ) -> Vec3 {
     let n = face.normal().as_vec3();
     let mut light = Vec3::ZERO;
@@ -32,7 +36,10 @@ pub(super) fn light<S: Scene + ?Sized, const EMIT: bool>(
         if cos > 0.0 {
             if let Some(shadow) = secondary(ray, hit, dir) {
                 stats.light_rays += 1;
-                if scene.trace(&shadow).is_none() {
+                if scene
+                    .trace_within_with(&shadow, f32::INFINITY, memory)
+                    .is_none()
+                {
                     // A face of albedo c facing the sun reflects c * intensity.
                     light += Vec3::splat(intensity * cos);
                 }
@@ -40,7 +47,7 @@ pub(super) fn light<S: Scene + ?Sized, const EMIT: bool>(
         }
     }
     if EMIT && !setup.emitters.is_empty() {
-        light += emitter(scene, setup, ray, hit, n, rng, stats);
+        light += emitter(scene, setup, ray, hit, n, rng, stats, memory);
     }
     light
 }
@@ -49,14 +56,16 @@ pub(super) fn light<S: Scene + ?Sized, const EMIT: bool>(
 /// uniformly on one of its faces that look toward the hit: the radiance it
 /// sends, divided by the probability of the pick (an unbiased estimate of
 /// all the emitters' light; faces turned away send nothing).
-fn emitter<S: Scene + ?Sized>(
-    scene: &S,
+#[allow(clippy::too_many_arguments)]
+fn emitter<'s, S: Scene + ?Sized>(
+    scene: &'s S,
     setup: &PathSetup<'_>,
     ray: &Ray,
     hit: &Hit,
     n: Vec3,
     rng: &mut Rng,
     stats: &mut RayStats,
+    memory: &mut WalkMemory<'s>,
 ) -> Vec3 {
     let count = setup.emitters.len();
     let pick = rng.next();
@@ -100,7 +109,8 @@ fn emitter<S: Scene + ?Sized>(
         return Vec3::ZERO;
     };
     stats.light_rays += 1;
-    let Some(seen) = scene.trace(&shadow).filter(|h| h.pos == lamp) else {
+    let seen = scene.trace_within_with(&shadow, f32::INFINITY, memory);
+    let Some(seen) = seen.filter(|h| h.pos == lamp) else {
         return Vec3::ZERO;
     };
     let material = setup.materials.get(seen.material);

@@ -11,7 +11,9 @@
 //! none. Every random number is keyed by pixel, sample and path event
 //! ([`Rng`]), so a pixel is the same on every thread count, crop, backend
 //! and target. Only camera rays start at the tile's clear distance; every
-//! later ray walks from its own origin.
+//! later ray walks from its own origin. Camera rays, light rays and
+//! diffuse bounces each share a walk memory with the neighbouring pixels'
+//! rays of their kind, which moves where walks begin, never what they hit.
 //!
 //! Radiance is linear in the units of the face-shaded look (1 is a color's
 //! full 255, colors are albedos as they are), so a diffuse voxel under a
@@ -31,8 +33,9 @@ use crate::render::options::{Background, Bounces, Fog, RenderOptions};
 use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{pack, pack_alpha, sky, to_u8, SKY_HORIZON};
+use crate::render::shader::Memories;
 use crate::render::stats::RayStats;
-use crate::scene::{Scene, WalkMemory};
+use crate::scene::Scene;
 
 use bsdf::{glossy, microfacet};
 use glass::{through_glass, Glass};
@@ -140,7 +143,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
         x: u32,
         y: u32,
         t_start: f32,
-        memory: &mut WalkMemory<'s>,
+        memories: &mut Memories<'s>,
     ) -> (u32, RayStats) {
         let samples = u32::from(self.setup.samples.max(1));
         let mut sum = Vec3::ZERO;
@@ -169,7 +172,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
                 event: 0,
             };
             let hits = stats.primary_hits;
-            let radiance = self.radiance(scene, &ray, t_start, memory, &mut rng, &mut stats);
+            let radiance = self.radiance(scene, &ray, t_start, memories, &mut rng, &mut stats);
             let missed = stats.primary_hits == hits;
             let radiance = match (missed, background) {
                 (true, Some(color)) => color,
@@ -203,13 +206,15 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
         scene: &'s S,
         camera_ray: &Ray,
         t_start: f32,
-        memory: &mut WalkMemory<'s>,
+        memories: &mut Memories<'s>,
         rng: &mut Rng,
         stats: &mut RayStats,
     ) -> Vec3 {
         let setup = self.setup;
         let mut ray = *camera_ray;
-        let mut hit = scene.trace_from_with(&ray, t_start, memory).hit;
+        let mut hit = scene
+            .trace_from_with(&ray, t_start, &mut memories.primary)
+            .hit;
         *stats += primary(hit.as_ref());
         let first_t = hit.map(|h| h.t);
         let mut beta = Vec3::ONE;
@@ -294,8 +299,18 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
             }
             // Diffuse: direct light, then one cosine-weighted bounce.
             let Some(face) = h.face else { break };
-            sum +=
-                beta * albedo * direct::light::<S, EMIT>(scene, setup, &ray, &h, face, rng, stats);
+            sum += beta
+                * albedo
+                * direct::light::<S, EMIT>(
+                    scene,
+                    setup,
+                    &ray,
+                    &h,
+                    face,
+                    rng,
+                    stats,
+                    &mut memories.shadow,
+                );
             if diffuse_left == 0 {
                 break;
             }
@@ -308,7 +323,9 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
             count_emission = false;
             stats.reflection_rays += 1;
             ray = next;
-            hit = scene.trace(&ray);
+            // (Neighbouring pixels' bounces leave neighbouring hits: their
+            // walks share a memory, as occlusion rays do.)
+            hit = scene.trace_within_with(&ray, f32::INFINITY, &mut memories.occlusion);
         }
         match (setup.fog, first_t) {
             (Some(fog), Some(t)) => {

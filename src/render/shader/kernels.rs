@@ -101,7 +101,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Kernel
         t_start: f32,
         memory: &mut Memories<'s>,
     ) -> (u32, RayStats) {
-        self.trace_pixel(scene, x, y, t_start, &mut memory.primary)
+        self.trace_pixel(scene, x, y, t_start, memory)
     }
 }
 

@@ -101,11 +101,11 @@ pub(crate) trait FrameJob {
 #[derive(Default)]
 pub(crate) struct Memories<'s> {
     /// Rays from the camera.
-    primary: WalkMemory<'s>,
-    /// Rays toward the sun.
-    shadow: WalkMemory<'s>,
-    /// Ambient occlusion rays.
-    occlusion: WalkMemory<'s>,
+    pub(crate) primary: WalkMemory<'s>,
+    /// Rays toward the sun, and the path tracer's rays toward its lights.
+    pub(crate) shadow: WalkMemory<'s>,
+    /// Ambient occlusion rays, and the path tracer's bounces.
+    pub(crate) occlusion: WalkMemory<'s>,
 }
 
 /// Computes pixels with one fixed set of effects.
