@@ -11,8 +11,8 @@ use crate::scene::{Hit, Scene, Traced, WalkMemory};
 /// `scene`'s voxels with `materials` and the emissive voxels `emitters`:
 /// traces exactly as `scene` does (coherent rays' walk memories included:
 /// they are handed on, so its walks keep their shared starts), and the
-/// renderer shades its hits with their materials. Borrowing, so it allocates nothing and works without
-/// `alloc`.
+/// renderer shades its hits with their materials. Borrowing, so it
+/// allocates nothing and works without `alloc`.
 ///
 /// ```
 /// use voxtrace::{IAabb, Material, Materials, OctreeScene, Scene, VoxelGenerator, WithMaterials};

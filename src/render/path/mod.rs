@@ -134,9 +134,10 @@ pub(crate) struct Path<'s, 'm, const GLASS: bool, const METAL: bool, const EMIT:
 
 impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS, METAL, EMIT> {
     /// Pixel `(x, y)`: the mean radiance of its samples, and the rays
-    /// traced (the kernel's `pixel`). Its camera rays' walks share `memory`
-    /// with the neighbouring pixels' (where a walk begins, never what it
-    /// hits); bounce and light rays go their own ways and walk alone.
+    /// traced (the kernel's `pixel`). Its camera rays, light rays and
+    /// diffuse bounces walk with `memories`, each kind sharing one with the
+    /// neighbouring pixels' rays of that kind (where a walk begins, never
+    /// what it hits).
     pub(crate) fn trace_pixel<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
