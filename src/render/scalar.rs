@@ -6,8 +6,9 @@
 
 use crate::error::Error;
 use crate::render::camera::Camera;
+use crate::render::memories::Memories;
 use crate::render::options::RenderOptions;
-use crate::render::shader::{FrameJob, Kernel, Memories, Shader};
+use crate::render::shader::{FrameJob, Kernel, Shader};
 use crate::render::stats::{RayStats, Rect};
 use crate::render::tiles::render_tiles;
 use crate::scene::Scene;

@@ -8,7 +8,8 @@
 //! byte-identical.
 
 use crate::render::camera::Camera;
-use crate::render::shader::{Kernel, Memories};
+use crate::render::memories::Memories;
+use crate::render::shader::Kernel;
 use crate::render::stats::{RayStats, Rect};
 use crate::scene::Scene;
 

@@ -29,11 +29,11 @@ use glam::{IVec3, Vec3};
 use crate::geom::Ray;
 use crate::material::{MaterialKind, Materials};
 use crate::render::camera::Camera;
+use crate::render::memories::Memories;
 use crate::render::options::{Background, Bounces, Fog, RenderOptions};
 use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{pack, pack_alpha, sky, to_u8, SKY_HORIZON};
-use crate::render::shader::Memories;
 use crate::render::stats::RayStats;
 use crate::scene::Scene;
 

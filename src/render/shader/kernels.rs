@@ -9,12 +9,13 @@ use glam::{U8Vec3, UVec3};
 
 use crate::geom::Ray;
 use crate::render::debug_view::{box_color, enters_near_edge};
+use crate::render::memories::Memories;
 use crate::render::options::Background;
 use crate::render::path::{Path, PathSetup};
 use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{face_index, fog_blend, lit, pack, pack_alpha, sky, FLAT_SKY};
-use crate::render::shader::{FrameJob, Kernel, Memories, Shader};
+use crate::render::shader::{FrameJob, Kernel, Shader};
 use crate::render::stats::RayStats;
 use crate::scene::Scene;
 

@@ -18,12 +18,13 @@ use glam::{U8Vec3, Vec3};
 
 use crate::material::{Materials, SceneMaterials};
 use crate::render::camera::Camera;
+use crate::render::memories::Memories;
 use crate::render::options::{Background, RenderOptions};
 use crate::render::path::PathSetup;
 use crate::render::plan::{EffectPlan, Look};
 use crate::render::shade::{face_weights, pack};
 use crate::render::stats::RayStats;
-use crate::scene::{Scene, WalkMemory};
+use crate::scene::Scene;
 
 mod kernels;
 
@@ -94,18 +95,6 @@ pub(crate) trait FrameJob {
     type Output;
     /// Does the job with `kernel`, which computes each pixel.
     fn run<K: Kernel>(self, kernel: &K) -> Self::Output;
-}
-
-/// What the walks of neighbouring pixels share, one memory per kind of ray
-/// (each kind's rays are coherent with each other, not with the others).
-#[derive(Default)]
-pub(crate) struct Memories<'s> {
-    /// Rays from the camera.
-    pub(crate) primary: WalkMemory<'s>,
-    /// Rays toward the sun, and the path tracer's rays toward its lights.
-    pub(crate) shadow: WalkMemory<'s>,
-    /// Ambient occlusion rays, and the path tracer's bounces.
-    pub(crate) occlusion: WalkMemory<'s>,
 }
 
 /// Computes pixels with one fixed set of effects.
