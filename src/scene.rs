@@ -240,52 +240,86 @@ pub trait Scene {
     }
 }
 
+/// The tracing methods of [`Scene`], every one but `materials`, each
+/// answered by the scene `$inner(self)` returns. The one list that
+/// wrappers of a scene forward (a reference, [`crate::WithMaterials`]), so
+/// that none of them falls back to a trait default that forgets what the
+/// wrapped storage knows: its clear distances, its walk memories.
+macro_rules! forward_tracing {
+    ($inner:path) => {
+        #[inline]
+        fn bounds(&self) -> $crate::geom::IAabb {
+            $inner(self).bounds()
+        }
+
+        #[inline]
+        fn trace_counted(&self, ray: &$crate::geom::Ray) -> $crate::scene::Traced {
+            $inner(self).trace_counted(ray)
+        }
+
+        fn trace_visiting(
+            &self,
+            ray: &$crate::geom::Ray,
+            visit: &mut dyn FnMut($crate::geom::IAabb) -> bool,
+        ) -> $crate::scene::Traced {
+            $inner(self).trace_visiting(ray, visit)
+        }
+
+        #[inline]
+        fn clear_distance(&self, frustum: &$crate::frustum::Frustum) -> f32 {
+            $inner(self).clear_distance(frustum)
+        }
+
+        #[inline]
+        fn trace_from(&self, ray: &$crate::geom::Ray, t_start: f32) -> $crate::scene::Traced {
+            $inner(self).trace_from(ray, t_start)
+        }
+
+        #[inline]
+        fn trace_from_with<'s>(
+            &'s self,
+            ray: &$crate::geom::Ray,
+            t_start: f32,
+            memory: &mut $crate::scene::WalkMemory<'s>,
+        ) -> $crate::scene::Traced {
+            $inner(self).trace_from_with(ray, t_start, memory)
+        }
+
+        #[inline]
+        fn trace(&self, ray: &$crate::geom::Ray) -> Option<$crate::scene::Hit> {
+            $inner(self).trace(ray)
+        }
+
+        #[inline]
+        fn trace_within(&self, ray: &$crate::geom::Ray, t_max: f32) -> Option<$crate::scene::Hit> {
+            $inner(self).trace_within(ray, t_max)
+        }
+
+        #[inline]
+        fn trace_within_with<'s>(
+            &'s self,
+            ray: &$crate::geom::Ray,
+            t_max: f32,
+            memory: &mut $crate::scene::WalkMemory<'s>,
+        ) -> Option<$crate::scene::Hit> {
+            $inner(self).trace_within_with(ray, t_max, memory)
+        }
+
+        fn storage_bytes(&self) -> usize {
+            $inner(self).storage_bytes()
+        }
+    };
+}
+pub(crate) use forward_tracing;
+
+/// The scene a reference refers to.
+#[inline(always)]
+fn referent<'a, S: ?Sized>(scene: &'a &S) -> &'a S {
+    scene
+}
+
 impl<S: Scene + ?Sized> Scene for &S {
-    fn bounds(&self) -> IAabb {
-        (**self).bounds()
-    }
-
-    fn trace_counted(&self, ray: &Ray) -> Traced {
-        (**self).trace_counted(ray)
-    }
-
-    fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced {
-        (**self).trace_visiting(ray, visit)
-    }
-
-    fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        (**self).trace_within(ray, t_max)
-    }
-
-    fn clear_distance(&self, frustum: &Frustum) -> f32 {
-        (**self).clear_distance(frustum)
-    }
-
-    fn trace_from(&self, ray: &Ray, t_start: f32) -> Traced {
-        (**self).trace_from(ray, t_start)
-    }
-
-    fn trace_from_with<'s>(
-        &'s self,
-        ray: &Ray,
-        t_start: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> Traced {
-        (**self).trace_from_with(ray, t_start, memory)
-    }
-
-    fn trace_within_with<'s>(
-        &'s self,
-        ray: &Ray,
-        t_max: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> Option<Hit> {
-        (**self).trace_within_with(ray, t_max, memory)
-    }
-
-    fn storage_bytes(&self) -> usize {
-        (**self).storage_bytes()
-    }
+    forward_tracing!(referent);
 
     fn materials(&self) -> Option<SceneMaterials<'_>> {
         (**self).materials()

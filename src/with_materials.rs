@@ -3,10 +3,8 @@
 
 use glam::IVec3;
 
-use crate::frustum::Frustum;
-use crate::geom::{IAabb, Ray};
 use crate::material::{Materials, SceneMaterials};
-use crate::scene::{Hit, Scene, Traced, WalkMemory};
+use crate::scene::{forward_tracing, Scene};
 
 /// `scene`'s voxels with `materials` and the emissive voxels `emitters`:
 /// traces exactly as `scene` does (coherent rays' walk memories included:
@@ -43,64 +41,14 @@ impl<'a, S: Scene> WithMaterials<'a, S> {
     }
 }
 
+/// The storage a [`WithMaterials`] wraps.
+#[inline(always)]
+fn storage<'a, S>(wrapped: &'a WithMaterials<'_, S>) -> &'a S {
+    &wrapped.scene
+}
+
 impl<S: Scene> Scene for WithMaterials<'_, S> {
-    #[inline]
-    fn bounds(&self) -> IAabb {
-        self.scene.bounds()
-    }
-
-    #[inline]
-    fn trace_counted(&self, ray: &Ray) -> Traced {
-        self.scene.trace_counted(ray)
-    }
-
-    fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced {
-        self.scene.trace_visiting(ray, visit)
-    }
-
-    #[inline]
-    fn clear_distance(&self, frustum: &Frustum) -> f32 {
-        self.scene.clear_distance(frustum)
-    }
-
-    #[inline]
-    fn trace_from(&self, ray: &Ray, t_start: f32) -> Traced {
-        self.scene.trace_from(ray, t_start)
-    }
-
-    #[inline]
-    fn trace_from_with<'s>(
-        &'s self,
-        ray: &Ray,
-        t_start: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> Traced {
-        self.scene.trace_from_with(ray, t_start, memory)
-    }
-
-    #[inline]
-    fn trace(&self, ray: &Ray) -> Option<Hit> {
-        self.scene.trace(ray)
-    }
-
-    #[inline]
-    fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        self.scene.trace_within(ray, t_max)
-    }
-
-    #[inline]
-    fn trace_within_with<'s>(
-        &'s self,
-        ray: &Ray,
-        t_max: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> Option<Hit> {
-        self.scene.trace_within_with(ray, t_max, memory)
-    }
-
-    fn storage_bytes(&self) -> usize {
-        self.scene.storage_bytes()
-    }
+    forward_tracing!(storage);
 
     fn materials(&self) -> Option<SceneMaterials<'_>> {
         Some(SceneMaterials {
