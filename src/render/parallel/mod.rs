@@ -5,7 +5,7 @@
 
 pub(crate) mod pixels;
 
-use rayon::iter::{IntoParallelIterator, ParallelIterator};
+use rayon::iter::{IndexedParallelIterator, IntoParallelIterator, ParallelIterator};
 
 use crate::error::Error;
 use crate::render::camera::Camera;
@@ -109,9 +109,13 @@ where
         } = self;
         // Bands of whole tiles: neighbouring rays stay on one thread, share
         // their tile's clear distance and walk the same nodes while they are
-        // in cache; 1080 rows make 135 tasks, plenty to balance threads.
+        // in cache; 1080 rows make 68 tasks. Each band is its own job: left
+        // to rayon's adaptive splitting, a thread would take a run of a
+        // dozen bands and walk it alone, and where the costly bands bunch
+        // up (the terrain under the sky) the other thread ran out of work.
         (0..region.height.div_ceil(TILE))
             .into_par_iter()
+            .with_max_len(1)
             .map(|band| {
                 let y = region.y + band * TILE;
                 let rect = Rect {
