@@ -110,8 +110,8 @@ where
         // Bands of whole tiles: neighbouring rays stay on one thread, share
         // their tile's clear distance and walk the same nodes while they are
         // in cache; 1080 rows make 68 tasks. Each band is its own job: left
-        // to rayon's adaptive splitting, a thread would take a run of a
-        // dozen bands and walk it alone, and where the costly bands bunch
+        // to rayon's adaptive splitting, a thread would take a run of
+        // several bands and walk it alone, and where the costly bands bunch
         // up (the terrain under the sky) the other thread ran out of work.
         (0..region.height.div_ceil(TILE))
             .into_par_iter()
