@@ -12,8 +12,11 @@
 //! space the whole tile shares (the idea of Laine & Karras 2010, section 5).
 //!
 //! Boxes are tested against the frustum's side planes (with a slack for
-//! rounding) and bricks by their 2x2x2 groups, so the answer can be early
-//! but never late.
+//! rounding), and a brick by its 2x2x2 groups and then by the solid voxels
+//! of each group that passes, so the answer can be early but never late.
+//! Voxels rather than groups as the leaves: a group's nearest point lies
+//! up to a voxel's diagonal before its solid voxels, and at size 100 most
+//! tiles' distance came out one to four voxels before their first hit.
 
 use glam::{IVec3, Vec3};
 
@@ -104,8 +107,10 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                     match node.kind() {
                         NodeKind::Solid(_) => best = distance,
                         NodeKind::Brick { occupancy, .. } => {
-                            best =
-                                best.min(self.brick_reach(frustum, min + corner, occupancy, best));
+                            let corner = min + corner;
+                            let reach =
+                                self.brick_reach(frustum, corner, occupancy, best, near_first);
+                            best = best.min(reach);
                         }
                         NodeKind::Branch { children, first } if depth < DEPTH => {
                             levels[depth] = Level {
@@ -148,16 +153,36 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         best * MARGIN
     }
 
-    /// The nearest of a brick's occupied 2x2x2 groups that may meet the
-    /// frustum and is closer than `best` (else `best`).
-    fn brick_reach(&self, frustum: &Frustum, corner: IVec3, occupancy: u64, mut best: f32) -> f32 {
+    /// The nearest distance at which a ray of the frustum may reach one of
+    /// a brick's solid voxels, if closer than `best` (else `best`): the
+    /// voxels of each occupied 2x2x2 group that may itself meet the frustum
+    /// closer than `best`. Groups and voxels go in the frustum's
+    /// nearest-first octant order `near_first`, so that the first voxel
+    /// found tends to be the nearest and the rest fail the distance test
+    /// before the plane tests.
+    fn brick_reach(
+        &self,
+        frustum: &Frustum,
+        corner: IVec3,
+        occupancy: u64,
+        mut best: f32,
+        near_first: u32,
+    ) -> f32 {
         for group in 0..8 {
-            let local = child_offset(group) * 2;
-            if occupancy & GROUP << brick_bit(local) == 0 {
+            let local = child_offset((group ^ near_first) as usize) * 2;
+            if occupancy & GROUP << brick_bit(local) == 0
+                || self.reach(frustum, corner + local, 2, best).is_none()
+            {
                 continue;
             }
-            if let Some(d) = self.reach(frustum, corner + local, 2, best) {
-                best = d;
+            for voxel in 0..8 {
+                let at = local + child_offset((voxel ^ near_first) as usize);
+                if occupancy >> brick_bit(at) & 1 == 0 {
+                    continue;
+                }
+                if let Some(d) = self.reach(frustum, corner + at, 1, best) {
+                    best = d;
+                }
             }
         }
         best
