@@ -262,6 +262,37 @@ fn a_clear_frustum_toward_the_horizon_reaches_most_of_the_way_to_its_hits() {
 }
 
 #[test]
+fn a_clear_frustum_counts_a_bricks_solid_voxels_not_their_groups() {
+    // One solid voxel at (1, 1, 1), the far corner of its 2x2x2 group
+    // [0, 2)^3 seen from -x, and one more far away so that the occupied
+    // box does not shrink the group to that voxel. The group's near face
+    // is a voxel before the solid voxel's: a beam counting groups would
+    // start the tile's rays a whole voxel early.
+    let source =
+        voxtrace::FnSource::new(common::sources::palette(1), |p: voxtrace::glam::IVec3| {
+            u8::from(p == voxtrace::glam::IVec3::ONE || p == voxtrace::glam::IVec3::splat(-7))
+        });
+    let scene = OctreeScene::build(&source, IAabb::centered(8)).unwrap();
+    let camera = camera(
+        16,
+        16,
+        Vec3::new(-10.5, 1.5, 1.5),
+        Vec3::new(1.5, 1.5, 1.5),
+        10.0,
+    )
+    .unwrap();
+    let t0 = scene.clear_distance(&camera.tile_frustum(0, 0, 16, 16).unwrap());
+    let nearest = (0..16)
+        .flat_map(|y| (0..16).map(move |x| (x, y)))
+        .filter_map(|(x, y)| scene.trace(&camera.get_ray(x, y)).map(|hit| hit.t))
+        .fold(f32::INFINITY, f32::min);
+    assert!(
+        nearest.is_finite() && t0 <= nearest && t0 >= nearest - 0.5,
+        "clear distance {t0}, nearest hit {nearest}"
+    );
+}
+
+#[test]
 fn extreme_cameras_and_spans_render_without_panics() {
     let scene = OctreeScene::build(&speckle(3, 30), IAabb::centered(8)).unwrap();
     let options = voxtrace::RenderOptions::default();
