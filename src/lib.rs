@@ -39,8 +39,9 @@
 //! - `alloc`: storage constructors that allocate (fallibly).
 //! - `std` (default): the atomic [`Framebuffer`]; implies `alloc`.
 //! - `rayon` (default): the framebuffer's parallel pixel iterator and
-//!   zeroing ([`Framebuffer::new_parallel`]), the threaded render ([`render_parallel`], byte-identical to the scalar one)
-//!   and parallel storage builds; implies `std`.
+//!   zeroing ([`Framebuffer::new_parallel`]), the threaded render
+//!   ([`render_parallel`], byte-identical to the scalar one) and parallel
+//!   storage builds; implies `std`.
 //! - `png` (default): PNG encoding and decoding of frames, and the
 //!   [`Golden`] helper for golden-image tests; implies `std`.
 //! - `vox`: MagicaVoxel `.vox` scenes as a [`VoxelSource`] (`VoxModel`),

@@ -224,10 +224,12 @@ fn a_framebuffer_zeroed_on_the_pool_is_the_one_new_makes() {
         Error::ZeroSize
     );
     assert_eq!(
-        Framebuffer::new_parallel(u32::MAX, u32::MAX).unwrap_err(),
+        pool.install(|| Framebuffer::new_parallel(u32::MAX, u32::MAX))
+            .unwrap_err(),
         Framebuffer::new(u32::MAX, u32::MAX).unwrap_err()
     );
-    // Large enough for the pool to split the zeroing between its threads.
+    // The last is large enough for the pool to split the zeroing between
+    // its threads.
     for (width, height) in [(1, 1), (7, 5), (1920, 1080)] {
         let parallel = pool
             .install(|| Framebuffer::new_parallel(width, height))

@@ -38,8 +38,8 @@ impl Framebuffer {
     }
 
     /// [`Framebuffer::new`], its pixels zeroed by the tasks of the current
-    /// rayon pool (the one a caller's `install` runs in, else rayon's
-    /// global pool, which this then starts) (feature `rayon`). The same
+    /// rayon pool: the one a caller's `install` runs in, else rayon's
+    /// global pool, which this then starts (feature `rayon`). The same
     /// framebuffer, the same errors. Zeroing is the first write to every
     /// page of a fresh allocation, and on one thread it took 5.2 to 5.9 ms
     /// of a 1920x1080 frame (2 threads: 2.9 to 3.4 ms, 2-core Xeon VM):
