@@ -24,7 +24,7 @@ use voxtrace::{
     Background, Camera, CameraSettings, EffectPlan, IAabb, Look, RayStats, Rect, RenderOptions,
     VoxModel, VoxelGenerator, VoxelSource,
 };
-use voxtrace_cli::atomic::{remove_on_signal, AtomicFile};
+use voxtrace_cli::atomic::{exit_with_error, remove_on_signal, AtomicFile};
 use voxtrace_cli::{
     export_vox, frame_path, on_threads, terrain_box, turntable, Boxes, BuiltScene, FrameRange,
 };
@@ -52,10 +52,7 @@ fn main() -> ExitCode {
     // temporary files and leaves every output file as it was.
     match remove_on_signal().and_then(|()| run(&args, &matches)) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(message) => {
-            eprintln!("error: {message}");
-            ExitCode::from(2)
-        }
+        Err(message) => exit_with_error(&message),
     }
 }
 
@@ -207,6 +204,9 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     if to_stdout && args.frames.is_some() {
         return Err("--frames writes one file per frame: --out - cannot hold them".into());
     }
+    if to_stdout {
+        output::check_stdout()?;
+    }
     let paths: Vec<PathBuf> = if args.frames.is_some() {
         range
             .frames()
@@ -246,9 +246,19 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     Ok(())
 }
 
-/// A temporary file beside `path` that replaces it once committed.
+/// A temporary file beside `path` that replaces it once committed (or the
+/// special file itself, written in place, unless it is a terminal).
 fn create(path: &Path) -> Result<AtomicFile, String> {
-    AtomicFile::create(path).map_err(|e| format!("cannot write --out {}: {e}", path.display()))
+    let file = AtomicFile::create(path)
+        .map_err(|e| format!("cannot write --out {}: {e}", path.display()))?;
+    if file.is_terminal() {
+        return Err(format!(
+            "{} ({}); pass --out FILE",
+            output::TERMINAL,
+            path.display()
+        ));
+    }
+    Ok(file)
 }
 
 /// `--export-vox`: the terrain as a `.vox` file.
@@ -293,7 +303,7 @@ impl Job<'_> {
         let alpha = self.options.background == Background::Transparent;
         let failed = |e: String| format!("cannot write --out {}: {e}", path.display());
         if first.is_none() && output::is_stdout(path) {
-            let out = std::io::stdout().lock();
+            let out = output::stdout().map_err(|e| failed(e.to_string()))?;
             return output::write(out, self.format, region.width, region.height, pixels, alpha)
                 .map_err(failed);
         }

@@ -42,6 +42,70 @@ pub fn is_stdout(path: &Path) -> bool {
     path.as_os_str() == "-"
 }
 
+/// What refuses a binary image for a terminal.
+pub const TERMINAL: &str = "refusing to write a binary image to a terminal";
+
+/// Checks, before any work, that standard output can take the image: it
+/// was open when the process started (`>&-` closes it, and the image would
+/// vanish) and is not a terminal (raw PNG bytes would garble it, as gzip
+/// refuses to).
+pub fn check_stdout() -> Result<(), String> {
+    use std::io::IsTerminal;
+    if stdout_closed_at_start() {
+        return Err(
+            "--out - writes to standard output, which is closed; redirect it or pass --out FILE"
+                .into(),
+        );
+    }
+    if std::io::stdout().is_terminal() {
+        return Err(format!("{TERMINAL}; redirect it or pass --out FILE"));
+    }
+    Ok(())
+}
+
+/// Standard output as a file of its own (a duplicate of descriptor 1):
+/// every write error shows, where `std::io::stdout` takes `EBADF` (a
+/// descriptor open only for reading) for success and the image would be
+/// lost.
+#[cfg(unix)]
+pub fn stdout() -> std::io::Result<std::fs::File> {
+    use std::os::fd::AsFd;
+    Ok(std::io::stdout().as_fd().try_clone_to_owned()?.into())
+}
+
+/// Standard output, elsewhere.
+#[cfg(not(unix))]
+pub fn stdout() -> std::io::Result<std::io::Stdout> {
+    Ok(std::io::stdout())
+}
+
+/// Whether standard output was closed when the process started. Rust's
+/// runtime opens `/dev/null` in its place before `main`, so only code that
+/// runs earlier can tell: a function in the ELF `.init_array`, which the
+/// loader runs before `main`, as std does to read the arguments.
+#[cfg(target_os = "linux")]
+fn stdout_closed_at_start() -> bool {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    static CLOSED: AtomicBool = AtomicBool::new(false);
+    extern "C" fn look() {
+        // SAFETY: F_GETFD only reads the descriptor's flags; -1 (EBADF)
+        // means no file is open as descriptor 1.
+        #[allow(unsafe_code)]
+        let open = unsafe { libc::fcntl(libc::STDOUT_FILENO, libc::F_GETFD) } != -1;
+        CLOSED.store(!open, Ordering::Relaxed);
+    }
+    #[used]
+    #[link_section = ".init_array"]
+    static LOOK: extern "C" fn() = look;
+    CLOSED.load(Ordering::Relaxed)
+}
+
+/// Elsewhere a closed standard output is not told from `/dev/null`.
+#[cfg(not(target_os = "linux"))]
+fn stdout_closed_at_start() -> bool {
+    false
+}
+
 /// The format `--format` names, or else the one of `path`'s extension (PNG
 /// for standard output and for no extension); an error names the extension
 /// and what this build writes instead.

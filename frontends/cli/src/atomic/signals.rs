@@ -1,0 +1,74 @@
+//! Every signal that would end the process, caught to remove the pending
+//! temporary files first.
+//!
+//! Caught: the requests to stop (SIGINT, SIGTERM, SIGHUP, SIGQUIT), the
+//! user's (SIGUSR1, SIGUSR2), the timers' (SIGALRM, SIGVTALRM, SIGPROF),
+//! the resource limits' (SIGXCPU, SIGXFSZ) and, on Linux, SIGIO, SIGPWR,
+//! SIGSTKFLT and the real-time signals: each of them ends a process by
+//! default. Not caught: SIGKILL and SIGSTOP (no process can), the faults
+//! (SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGTRAP, SIGSYS, SIGABRT: a handler
+//! that returns would run the fault again), and SIGPIPE, which Rust's
+//! runtime ignores so that writing to a closed pipe is an `EPIPE` error,
+//! reported as one (exit 2).
+
+use std::os::raw::c_int;
+
+use signal_hook::consts::signal::{
+    SIGALRM, SIGHUP, SIGINT, SIGPROF, SIGQUIT, SIGTERM, SIGUSR1, SIGUSR2, SIGVTALRM, SIGXCPU,
+    SIGXFSZ,
+};
+
+/// The signals caught on every Unix.
+const PORTABLE: [c_int; 11] = [
+    SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGVTALRM, SIGPROF, SIGXCPU,
+    SIGXFSZ,
+];
+
+/// Every signal [`super::remove_on_signal`] catches.
+pub(super) fn caught() -> Vec<c_int> {
+    let mut signals = PORTABLE.to_vec();
+    #[cfg(any(target_os = "linux", target_os = "android"))]
+    {
+        signals.extend([libc::SIGIO, libc::SIGPWR, libc::SIGSTKFLT]);
+        signals.extend(libc::SIGRTMIN()..=libc::SIGRTMAX());
+    }
+    signals
+}
+
+/// The signal's usual name (`SIGHUP`, `SIGRTMIN+3`).
+pub(super) fn name(signal: c_int) -> String {
+    if let Some(name) = signal_hook::low_level::signal_name(signal) {
+        return name.to_string();
+    }
+    #[cfg(any(target_os = "linux", target_os = "android"))]
+    {
+        match signal {
+            libc::SIGPWR => return "SIGPWR".into(),
+            libc::SIGSTKFLT => return "SIGSTKFLT".into(),
+            _ => {}
+        }
+        let (min, max) = (libc::SIGRTMIN(), libc::SIGRTMAX());
+        if (min..=max).contains(&signal) {
+            return format!("SIGRTMIN+{}", signal - min);
+        }
+    }
+    format!("signal {signal}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_caught_signal_has_a_name_and_none_is_a_fault_or_sigpipe() {
+        use signal_hook::consts::signal::{SIGKILL, SIGPIPE, SIGSEGV, SIGSTOP};
+        let signals = caught();
+        for signal in &signals {
+            assert!(name(*signal).starts_with("SIG"), "{signal}");
+        }
+        for never in [SIGKILL, SIGSTOP, SIGSEGV, SIGPIPE] {
+            assert!(!signals.contains(&never), "{}", name(never));
+        }
+        assert_eq!(name(SIGHUP), "SIGHUP");
+    }
+}
