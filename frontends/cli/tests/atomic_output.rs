@@ -1,6 +1,7 @@
-//! Nothing is lost: a render that fails, or is stopped by SIGINT or SIGTERM,
-//! leaves the previous `--out` byte for byte as it was, and no temporary
-//! file behind.
+//! Nothing is lost: a render that fails, or is stopped by any signal that
+//! would end it, leaves the previous `--out` byte for byte as it was, and no
+//! temporary file behind; no file left by an earlier run, and no long name,
+//! keeps a run from writing; a directory as `--out` fails before the build.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -75,45 +76,195 @@ fn a_successful_render_replaces_the_file_whole() {
     assert_eq!(entries(&dir), ["render.png"]);
 }
 
+/// `voxtrace ARGS --out OUT`, started: minutes of work for the debug
+/// binary, so still building or rendering when a signal comes.
+fn slow_render(out: &Path) -> std::process::Child {
+    Command::new(env!("CARGO_BIN_EXE_voxtrace"))
+        .args(["--size", "100", "--width", "640", "--height", "360"])
+        .args(["--spp", "256", "--shadows", "--seed", "1", "--out"])
+        .arg(out)
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
+/// Every signal that ends a process by default and can be caught (see
+/// `atomic/signals.rs`), with its name.
+#[cfg(unix)]
+fn terminating_signals() -> Vec<(libc::c_int, String)> {
+    let mut signals: Vec<(libc::c_int, String)> = [
+        (libc::SIGINT, "SIGINT"),
+        (libc::SIGTERM, "SIGTERM"),
+        (libc::SIGHUP, "SIGHUP"),
+        (libc::SIGQUIT, "SIGQUIT"),
+        (libc::SIGUSR1, "SIGUSR1"),
+        (libc::SIGUSR2, "SIGUSR2"),
+        (libc::SIGALRM, "SIGALRM"),
+        (libc::SIGVTALRM, "SIGVTALRM"),
+        (libc::SIGPROF, "SIGPROF"),
+        (libc::SIGXCPU, "SIGXCPU"),
+        (libc::SIGXFSZ, "SIGXFSZ"),
+    ]
+    .iter()
+    .map(|(n, name)| (*n, name.to_string()))
+    .collect();
+    #[cfg(target_os = "linux")]
+    signals.extend([
+        (libc::SIGIO, "SIGIO".to_string()),
+        (libc::SIGPWR, "SIGPWR".to_string()),
+        (libc::SIGRTMIN(), "SIGRTMIN+0".to_string()),
+        (
+            libc::SIGRTMAX(),
+            format!("SIGRTMIN+{}", libc::SIGRTMAX() - libc::SIGRTMIN()),
+        ),
+    ]);
+    signals
+}
+
 #[cfg(unix)]
 #[test]
-fn sigint_and_sigterm_mid_render_leave_the_old_file_and_no_temporary() {
-    for (signal, code) in [("TERM", 143), ("INT", 130)] {
+fn every_terminating_signal_mid_render_leaves_the_old_file_and_no_temporary() {
+    for (signal, name) in terminating_signals() {
         let dir = fresh_dir(&format!("sig{signal}"));
         let out = dir.join("render.png");
         std::fs::write(&out, OLD).unwrap();
-        // Minutes of work for the debug binary: still rendering when the
-        // signal comes.
-        let child = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
-            .args(["--size", "100", "--width", "640", "--height", "360"])
-            .args(["--spp", "256", "--shadows", "--seed", "1", "--out"])
-            .arg(&out)
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
+        let child = slow_render(&out);
         // The temporary file appears once the output is checked, before
         // the build: then the run is under way.
         let started = Instant::now();
         while entries(&dir).len() < 2 {
             assert!(
                 started.elapsed() < Duration::from_secs(60),
-                "no temporary file appeared: {:?}",
+                "{name}: no temporary file appeared: {:?}",
                 entries(&dir)
             );
             std::thread::sleep(Duration::from_millis(20));
         }
         std::thread::sleep(Duration::from_millis(300));
-        let sent = Command::new("kill")
-            .args([&format!("-{signal}"), &child.id().to_string()])
-            .status()
-            .unwrap();
-        assert!(sent.success());
+        // SAFETY: kill only sends a signal to the child started above.
+        #[allow(unsafe_code)]
+        let sent = unsafe { libc::kill(child.id() as libc::pid_t, signal) };
+        assert_eq!(sent, 0, "{name}");
         let result = child.wait_with_output().unwrap();
         let stderr = String::from_utf8_lossy(&result.stderr);
-        assert_eq!(result.status.code(), Some(code), "SIG{signal}: {stderr}");
-        assert!(stderr.starts_with("error: interrupted by SIG"), "{stderr}");
-        assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
-        assert_eq!(std::fs::read(&out).unwrap(), OLD, "SIG{signal}");
-        assert_eq!(entries(&dir), ["render.png"], "SIG{signal}");
+        assert_eq!(result.status.code(), Some(128 + signal), "{name}: {stderr}");
+        assert!(
+            stderr.starts_with(&format!("error: interrupted by {name};")),
+            "{name}: {stderr}"
+        );
+        assert_eq!(stderr.trim_end().lines().count(), 1, "{name}: {stderr}");
+        assert_eq!(std::fs::read(&out).unwrap(), OLD, "{name}");
+        assert_eq!(entries(&dir), ["render.png"], "{name}");
     }
+}
+
+/// A small render into `out`, run by `launcher` (empty: directly).
+fn quick_render(launcher: &[&str], out: &Path) -> std::process::Output {
+    let (program, before) = match launcher.split_first() {
+        Some((program, rest)) => (*program, rest),
+        None => (env!("CARGO_BIN_EXE_voxtrace"), &[][..]),
+    };
+    let mut command = Command::new(program);
+    command.args(before);
+    if !launcher.is_empty() {
+        command.arg(env!("CARGO_BIN_EXE_voxtrace"));
+    }
+    command
+        .args([
+            "--size", "20", "--width", "32", "--height", "18", "--seed", "1",
+        ])
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn files_left_by_killed_runs_never_block_a_run() {
+    let dir = fresh_dir("leftovers");
+    let out = dir.join("render.png");
+    // What `kill -9` left under the old deterministic names, for the
+    // process ids a container's first process (1) and the next ones get.
+    let mut left: Vec<String> = (1..=4)
+        .map(|pid| format!(".render.png.{pid}-0.tmp"))
+        .collect();
+    left.push(".render.png.tmp".into());
+    for name in &left {
+        std::fs::write(dir.join(name), b"left by a killed run").unwrap();
+    }
+    // As the first process of a new pid namespace, where the old names
+    // collided every time; plainly when unshare is refused here.
+    let pid_one = ["unshare", "--pid", "--fork"];
+    let as_pid_one = Command::new(pid_one[0])
+        .args(&pid_one[1..])
+        .arg("true")
+        .status()
+        .is_ok_and(|s| s.success());
+    let launcher: &[&str] = if as_pid_one {
+        &pid_one
+    } else {
+        println!("note: unshare --pid is refused here: the run is not pid 1");
+        &[]
+    };
+    let result = quick_render(launcher, &out);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(result.status.success(), "{stderr}");
+    assert_eq!(&std::fs::read(&out).unwrap()[1..4], b"PNG");
+    // The leftovers are another run's business: untouched.
+    left.push("render.png".into());
+    left.sort();
+    assert_eq!(entries(&dir), left);
+}
+
+#[test]
+fn names_up_to_the_file_systems_limit_are_written() {
+    let dir = fresh_dir("long-names");
+    // 255 bytes is NAME_MAX: the temporary name must not grow with it.
+    for len in [254, 255] {
+        let name = format!("{}.png", "n".repeat(len - 4));
+        let out = dir.join(&name);
+        let result = quick_render(&[], &out);
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(result.status.success(), "{len} bytes: {stderr}");
+        assert_eq!(&std::fs::read(&out).unwrap()[1..4], b"PNG");
+    }
+    assert_eq!(entries(&dir).len(), 2, "{:?}", entries(&dir));
+}
+
+#[test]
+fn a_directory_as_out_fails_before_the_build() {
+    let dir = fresh_dir("directory");
+    std::fs::create_dir(dir.join("existing")).unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink("existing", dir.join("link")).unwrap();
+    let outs = ["existing", "existing/", "missing/", "link", "existing/."];
+    for name in outs {
+        let out = format!("{}/{name}", dir.display());
+        if name == "link" && cfg!(not(unix)) {
+            continue;
+        }
+        // No --seed: a run that went on to build would print its seed
+        // first; the scene takes minutes to build in a debug binary.
+        let started = Instant::now();
+        let result = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
+            .args(["--size", "400", "--width", "64", "--height", "36", "--out"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        println!("--out {name}: {:.2?}", started.elapsed());
+        assert_eq!(result.status.code(), Some(2), "{name}: {stderr}");
+        assert_eq!(stderr.trim_end().lines().count(), 1, "{name}: {stderr}");
+        assert!(
+            stderr.starts_with(&format!("error: cannot write --out {out}: "))
+                && stderr.contains("directory"),
+            "{name}: {stderr}"
+        );
+    }
+    let mut expected = vec!["existing"];
+    if cfg!(unix) {
+        expected.push("link");
+    }
+    assert_eq!(entries(&dir), expected);
+    assert!(entries(&dir.join("existing")).is_empty());
 }

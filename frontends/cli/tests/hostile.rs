@@ -187,6 +187,51 @@ fn the_bombs_are_refused_by_the_count_naming_the_limit() {
     }
 }
 
+/// A bad `--out` fails at once, before a build of seconds: a directory
+/// (by its kind, through a link, or by a trailing `/`) and a missing
+/// folder. Within 1 s for the optimized binary (`.ci/run`), which needs
+/// seconds to build this scene; the debug one's times are printed.
+#[test]
+fn a_bad_out_fails_before_the_build() {
+    let dir = scratch("hostile-out");
+    std::fs::create_dir(dir.join("folder")).unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink("folder", dir.join("link")).unwrap();
+    for name in ["folder", "folder/", "link", "new/", "missing/out.png"] {
+        let out = dir.join(name);
+        if !cfg!(unix) && name == "link" {
+            continue;
+        }
+        let mut args = base(&out);
+        args.extend(["--size", "1000"].map(String::from));
+        let ended = run_limited(&args);
+        println!(
+            "--out {name}: exit {:?} in {:.2?}",
+            ended.code, ended.elapsed
+        );
+        check_contract(name, &ended).unwrap();
+        assert_eq!(ended.code, Some(2), "{name}: {}", ended.stderr);
+        assert!(
+            ended
+                .stderr
+                .contains(&format!("cannot write --out {}: ", out.display())),
+            "{name}: {}",
+            ended.stderr
+        );
+        if !cfg!(debug_assertions) {
+            assert!(
+                ended.elapsed.as_secs_f64() < 1.0,
+                "{name}: {:.2?}",
+                ended.elapsed
+            );
+        }
+    }
+    assert!(std::fs::read_dir(dir.join("folder"))
+        .unwrap()
+        .next()
+        .is_none());
+}
+
 #[test]
 fn every_truncation_parses_or_fails_in_process() {
     // In process, without limits: an Err or a model, never a panic (an

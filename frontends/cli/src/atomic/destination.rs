@@ -7,7 +7,7 @@
 //! there (the temporary file beside it, in its directory) so that the link
 //! keeps pointing where it did. A dangling link is followed too: the file it
 //! names is created, as `cp` and `>` do. A directory, or a path ending in
-//! `/` (which can only name one), is refused before any work.
+//! `/`, `.` or `..` (which can only name one), is refused before any work.
 
 use std::io;
 use std::path::{Path, PathBuf};
@@ -31,14 +31,17 @@ pub(super) enum Destination {
 /// loops, or its status cannot be read (a parent that is a file, no
 /// permission).
 pub(super) fn destination(target: &Path) -> io::Result<Destination> {
-    if names_a_directory(target) {
+    let found = std::fs::metadata(target);
+    if found.as_ref().is_ok_and(std::fs::Metadata::is_dir) {
+        return Err(is_a_directory());
+    }
+    if let Some(ending) = directory_ending(target) {
         return Err(io::Error::new(
             io::ErrorKind::IsADirectory,
-            "it ends in `/`, so it names a directory; name a file",
+            format!("a path ending in `{ending}` names a directory; name a file"),
         ));
     }
-    match std::fs::metadata(target) {
-        Ok(meta) if meta.is_dir() => Err(is_a_directory()),
+    match found {
         Ok(meta) if !meta.is_file() => Ok(Destination::InPlace),
         Ok(meta) => {
             if !std::fs::symlink_metadata(target)?.is_symlink() {
@@ -64,12 +67,17 @@ fn is_a_directory() -> io::Error {
     )
 }
 
-/// A path whose last component can only be a directory: `x/`, `x/.`,
-/// `x/..`, `.`, `..`.
-fn names_a_directory(path: &Path) -> bool {
+/// The ending that makes a path name a directory whatever exists: `x/`,
+/// `x/.`, `x/..`, `.`, `..`.
+fn directory_ending(path: &Path) -> Option<&'static str> {
     let text = path.as_os_str().as_encoded_bytes();
     let last = text.rsplit(|&b| b == b'/').next().unwrap_or(text);
-    text.ends_with(b"/") || last == b"." || last == b".."
+    match last {
+        b"" => Some("/"),
+        b"." => Some("."),
+        b".." => Some(".."),
+        _ => None,
+    }
 }
 
 #[cfg(unix)]
@@ -99,8 +107,11 @@ fn dangling_target(target: &Path) -> io::Result<Destination> {
                 };
             }
             _ => {
-                if names_a_directory(&path) {
-                    return Err(is_a_directory());
+                if let Some(ending) = directory_ending(&path) {
+                    return Err(io::Error::new(
+                        io::ErrorKind::IsADirectory,
+                        format!("it is a link to a path ending in `{ending}`, a directory"),
+                    ));
                 }
                 return Ok(Destination::Replace(path));
             }

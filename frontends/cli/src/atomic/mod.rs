@@ -83,12 +83,21 @@ impl AtomicFile {
                     out: Some(BufWriter::new(file)),
                 })
             }
-            Destination::Replace(target) => {
+            Destination::Replace(real) => {
                 let mut list = pending();
-                let (file, temp) = temp_beside(&target)?;
+                let (file, temp) = temp_beside(&real).map_err(|e| {
+                    if real == target {
+                        e
+                    } else {
+                        io::Error::new(
+                            e.kind(),
+                            format!("{e}: the link leads to {}", real.display()),
+                        )
+                    }
+                })?;
                 list.push(temp.clone());
                 Ok(AtomicFile {
-                    target,
+                    target: real,
                     temp: Some(temp),
                     out: Some(BufWriter::new(file)),
                 })
@@ -152,8 +161,9 @@ impl AtomicFile {
 }
 
 /// A new, exclusively created temporary file in `target`'s directory,
-/// readable as a new file would be (0666 less the umask: tempfile's own
-/// 0600 would carry over to the output), and its path.
+/// readable as a new file would be (0666 less the umask, where tempfile's
+/// own files are 0600, a mode the output would keep), and its path.
+/// tempfile picks the random names and retries one that exists.
 fn temp_beside(target: &Path) -> io::Result<(File, PathBuf)> {
     let name = target.file_name().unwrap_or_default().to_string_lossy();
     let mut end = 0;
@@ -164,20 +174,14 @@ fn temp_beside(target: &Path) -> io::Result<(File, PathBuf)> {
         end = at + c.len_utf8();
     }
     let prefix = format!(".{}.", &name[..end]);
-    let mut builder = tempfile::Builder::new();
-    builder
+    let temp = tempfile::Builder::new()
         .prefix(&prefix)
         .suffix(".tmp")
-        .rand_bytes(RANDOM_CHARS);
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
-    }
-    let (file, path) = builder
-        .tempfile_in(parent_of(target))?
-        .keep()
-        .map_err(|e| e.error)?;
+        .rand_bytes(RANDOM_CHARS)
+        .make_in(parent_of(target), |path| {
+            File::options().write(true).create_new(true).open(path)
+        })?;
+    let (file, path) = temp.keep().map_err(|e| e.error)?;
     Ok((file, path))
 }
 
