@@ -1,7 +1,7 @@
 //! Writing the image: PNG through voxtrace's own encoder, and with the
 //! `image` feature BMP, TGA and PPM through the image crate (built with only
 //! those codecs), chosen by `--format` or the `--out` extension; `--out -`
-//! writes to standard output.
+//! writes to standard output, unless it is closed or a terminal.
 
 use std::io::{BufWriter, Write};
 use std::path::Path;
