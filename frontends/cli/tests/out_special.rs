@@ -250,7 +250,7 @@ fn a_terminal_is_refused_a_binary_image() {
         println!("skipped: script(1) is absent, no terminal to write to");
         return;
     }
-    for out in ["-", "/dev/stdout"] {
+    for out in ["-", "/proc/self/fd/1"] {
         // script runs the command on a new pseudo-terminal and copies what
         // it shows (both streams) to its own standard output.
         let command = format!(
