@@ -13,8 +13,9 @@
 //! symlink is followed and the file it leads to replaced, so the link stays;
 //! a directory is refused at once.
 //!
-//! Temporary names are `.` + the first [`PREFIX_BYTES`] bytes of the
-//! target's name + `.` + 8 random letters and digits + `.tmp` (at most 38
+//! Temporary names are `.` + at most the first [`PREFIX_BYTES`] bytes of
+//! the target's name (cut between characters) + `.` + 8 random ASCII
+//! letters and digits + `.tmp` (`.render.png.iqlu2JeK.tmp`; at most 38
 //! bytes, so any file name that fits fits beside it), created exclusively:
 //! a file left by a killed run never blocks the next one.
 
