@@ -134,3 +134,9 @@ pub use rayon;
 
 /// Re-export of the math types in voxtrace's API.
 pub use glam;
+
+/// The README's Rust example, compiled by `cargo test --doc` so that it
+/// keeps up with the API.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
