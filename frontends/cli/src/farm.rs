@@ -244,6 +244,9 @@ fn run_stitch(args: &StitchArgs) -> Result<(), String> {
             "refusing to write a binary image to a terminal; redirect it or pass --out FILE".into(),
         );
     }
+    if to_stdout && stdout_was_closed() {
+        return Err("standard output is closed; redirect it or pass --out FILE".into());
+    }
     refuse_a_part_as_out(out, to_stdout, &args.parts)?;
     // Before any output exists: an interrupted stitch then removes its
     // temporary file and leaves --out as it was.
@@ -304,6 +307,28 @@ fn refuse_a_part_as_out(out: &Path, to_stdout: bool, parts: &[PathBuf]) -> Resul
         }
     }
     Ok(())
+}
+
+/// Whether standard output was closed when the process started (`>&-`):
+/// Rust's runtime then opens `/dev/null` read-write in its place, where
+/// every byte would vanish without an error. A shell's `>/dev/null` opens
+/// it write-only, and is kept.
+#[cfg(target_os = "linux")]
+fn stdout_was_closed() -> bool {
+    let on_null = std::fs::read_link("/proc/self/fd/1").is_ok_and(|p| p == Path::new("/dev/null"));
+    let flags = std::fs::read_to_string("/proc/self/fdinfo/1")
+        .ok()
+        .and_then(|info| {
+            let line = info.lines().find(|l| l.starts_with("flags:"))?;
+            u32::from_str_radix(line["flags:".len()..].trim(), 8).ok()
+        });
+    on_null && flags.is_some_and(|f| f & 0o3 == 0o2) // O_RDWR
+}
+
+/// Elsewhere the runtime's stand-in cannot be told from a redirection.
+#[cfg(not(target_os = "linux"))]
+fn stdout_was_closed() -> bool {
+    false
 }
 
 /// What standard output is open on, if it is open.

@@ -32,9 +32,10 @@ pub struct Stitched {
 }
 
 /// Bytes per pixel of the frame at a stitch's peak: the frame (4), the
-/// encoder's RGBA copy of it (4) and its compressed stream, at worst the
-/// size of the copy (4).
-pub const FRAME_BYTES_PER_PIXEL: u128 = 12;
+/// encoder's RGBA copy of it (4) and its compressed stream, which for
+/// pixels that do not compress (parts are anyone's files) is the size of
+/// the copy in a vector grown by doubling (up to 8).
+pub const FRAME_BYTES_PER_PIXEL: u128 = 16;
 
 /// Reads the part files at `paths` and assembles their frame; `available`
 /// is the memory the stitch may still use, and where that figure comes

@@ -200,7 +200,7 @@ fn out_dash_writes_the_frame_to_standard_output() {
 
 #[cfg(unix)]
 #[test]
-fn out_dash_to_a_full_disk_or_a_closed_pipe_is_one_error_line() {
+fn out_dash_to_a_full_disk_a_closed_pipe_or_no_stdout_is_one_error_line() {
     let dir = scratch("stdout-fails");
     two_tiles(&dir);
     let run = |stdout: Stdio| {
@@ -224,6 +224,25 @@ fn out_dash_to_a_full_disk_or_a_closed_pipe_is_one_error_line() {
     drop(child.stdout.take());
     let out = child.wait_with_output().unwrap();
     refused(&out, &["standard output"]);
+
+    // Closed (`>&-`): Rust's runtime puts /dev/null there, which must not
+    // swallow the frame; a redirection to /dev/null is still fine.
+    let shell = |redirect: &str| {
+        Command::new("sh")
+            .arg("-c")
+            .arg(format!(
+                "exec \"$0\" stitch t-0.png t-1.png --out - {redirect}"
+            ))
+            .arg(env!("CARGO_BIN_EXE_voxtrace"))
+            .current_dir(&dir)
+            .output()
+            .unwrap()
+    };
+    if cfg!(target_os = "linux") {
+        refused(&shell(">&-"), &["standard output is closed"]);
+    }
+    let null = shell(">/dev/null");
+    assert!(null.status.success(), "{}", stderr(&null));
 }
 
 #[cfg(unix)]
