@@ -184,7 +184,8 @@ struct StitchArgs {
     #[arg(value_name = "PART")]
     parts: Vec<PathBuf>,
 
-    /// The stitched PNG; written whole or not at all.
+    /// The stitched PNG, written whole or not at all; `-` writes it to
+    /// standard output (not a terminal). It cannot be one of the parts.
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
 

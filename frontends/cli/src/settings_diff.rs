@@ -4,13 +4,14 @@
 //! A settings text (see [`crate::part::settings_text`]) is `key=value`
 //! words whose values are `[...]` groups of `key=value` words or Rust
 //! `Debug` forms (`Name { field: value, ... }`). Both texts are read as the
-//! same tree of named fields and walked in order; the first field whose
-//! values differ, as deep as both sides have the same fields, is the
-//! difference. Its path (`options.shadows`) names the flag through
-//! [`FLAGS`]; a path missing there is shown as it is.
+//! same tree of named fields, as deep as both sides have the same fields.
+//! Of the fields that differ, the one listed first in [`FLAGS`] is named
+//! (the resolved camera's position before the vectors derived from it),
+//! by its flag; a path missing there is shown as it is.
 
 /// The flag, or what else decides it, of each field path of a settings
-/// text; a path not listed takes its nearest listed parent's name.
+/// text, in the order a difference is named when several fields differ; a
+/// path not listed takes its nearest listed parent's name and place.
 const FLAGS: &[(&str, &str)] = &[
     ("voxtrace", "the voxtrace version"),
     (
@@ -21,72 +22,82 @@ const FLAGS: &[(&str, &str)] = &[
     ("subject.size", "--size"),
     ("subject.fnv1a64", "the --vox file's contents"),
     ("backend", "--backend"),
-    ("camera", "the camera"),
+    // The resolved camera: its position and projection, then what the
+    // view direction, the field of view and the up direction derive.
     ("camera.width", "--width"),
     ("camera.height", "--height"),
-    ("camera.vertical_fov", "--fov"),
     (
-        "camera.lookfrom",
+        "camera.center",
         "the camera position (--position, --view, --orbit or --camera)",
     ),
-    ("camera.lookat", "--lookat"),
-    ("camera.cam_up", "--up"),
-    ("camera.up_fallback", "--up"),
-    ("camera.projection", "--projection"),
-    ("camera.projection.height", "--ortho-height"),
-    ("options", "the render options"),
+    ("camera.orthographic", "--projection"),
+    (
+        "camera.forward",
+        "the view direction (--lookat, --view, --orbit or --camera)",
+    ),
+    (
+        "camera.spread",
+        "the field of view (--fov or --ortho-height)",
+    ),
+    (
+        "camera.delta_u",
+        "the image's up direction or scale (--up, --fov or --ortho-height)",
+    ),
+    (
+        "camera.delta_v",
+        "the image's up direction or scale (--up, --fov or --ortho-height)",
+    ),
+    ("camera", "the camera"),
     ("options.flat", "--flat"),
     ("options.debug", "--debug"),
     ("options.sun", "--sun"),
     ("options.shadows", "--shadows"),
-    ("options.occlusion", "--ao"),
     ("options.occlusion.distance", "--ao-distance"),
+    ("options.occlusion", "--ao"),
     ("options.samples", "--spp"),
     ("options.fog", "--fog"),
     ("options.background", "--background"),
-    ("options.lighting", "the --vox file's light"),
     ("options.lighting.bounces", "--bounces"),
     ("options.lighting.path_trace", "--bounces"),
+    ("options.lighting", "the --vox file's light"),
+    ("options", "the render options"),
 ];
 
 /// The longest value shown: a settings text comes from a file, and a
 /// message stays one readable line.
 const SHOWN: usize = 60;
 
-/// The first difference between settings texts `a` and `b`, as
-/// `--shadows: true against false`; `None` when they are equal.
-#[must_use]
-pub fn settings_difference(a: &str, b: &str) -> Option<String> {
-    let (path, x, y) = first_difference(String::new(), a, b)?;
-    let name = setting_name(&path);
-    Some(format!("{name}: {} against {}", shorten(x), shorten(y)))
-}
-
-/// The flag (or description) of field `path`.
-fn setting_name(path: &str) -> String {
-    let mut at = path;
-    loop {
-        if let Some((_, name)) = FLAGS.iter().find(|(p, _)| *p == at) {
-            return (*name).to_string();
-        }
-        match at.rsplit_once('.') {
-            Some((parent, _)) => at = parent,
-            None if path.is_empty() => return "the settings".to_string(),
-            None => return path.to_string(),
-        }
-    }
-}
-
 /// How deep fields are followed: a settings text nests four levels; a
 /// forged one may nest far more, and must not exhaust the stack.
 const DEPTH: usize = 8;
 
-/// The path and values of the first field where `a` and `b` differ.
-fn first_difference<'t>(
-    path: String,
-    a: &'t str,
-    b: &'t str,
-) -> Option<(String, &'t str, &'t str)> {
+/// The difference between settings texts `a` and `b` (see the module
+/// doc), as `--shadows: true against false`; `None` when they are equal.
+#[must_use]
+pub fn settings_difference(a: &str, b: &str) -> Option<String> {
+    let (path, x, y) = difference(String::new(), a, b)?;
+    let name = match listed(&path) {
+        Some((_, name)) => name.to_string(),
+        None if path.is_empty() => "the settings".to_string(),
+        None => path,
+    };
+    Some(format!("{name}: {} against {}", shorten(x), shorten(y)))
+}
+
+/// The place in [`FLAGS`] and the name of field `path`, or of its nearest
+/// listed parent.
+fn listed(path: &str) -> Option<(usize, &'static str)> {
+    let mut at = path;
+    loop {
+        if let Some(found) = FLAGS.iter().position(|(p, _)| *p == at) {
+            return Some((found, FLAGS[found].1));
+        }
+        at = at.rsplit_once('.')?.0;
+    }
+}
+
+/// The path and values of the field to name where `a` and `b` differ.
+fn difference<'t>(path: String, a: &'t str, b: &'t str) -> Option<(String, &'t str, &'t str)> {
     if a == b {
         return None;
     }
@@ -99,15 +110,18 @@ fn first_difference<'t>(
     if let (Some(fa), Some(fb)) = (fa, fb) {
         let same_names = fa.len() == fb.len() && fa.iter().zip(&fb).all(|(x, y)| x.0 == y.0);
         if same_names {
-            for ((name, x), (_, y)) in fa.into_iter().zip(fb) {
+            let differing = fa.into_iter().zip(fb).filter_map(|((name, x), (_, y))| {
                 let inner = if path.is_empty() {
                     name.to_string()
                 } else {
                     format!("{path}.{name}")
                 };
-                if let Some(found) = first_difference(inner, x, y) {
-                    return Some(found);
-                }
+                difference(inner, x, y)
+            });
+            // The first listed; unlisted ones after them, in their order.
+            let rank = |found: &(String, &str, &str)| listed(&found.0).map_or(usize::MAX, |l| l.0);
+            if let Some(found) = differing.min_by_key(rank) {
+                return Some(found);
             }
         }
     }
@@ -252,6 +266,30 @@ mod tests {
             diff(&vox).unwrap().starts_with("the scene"),
             "{:?}",
             diff(&vox)
+        );
+    }
+
+    #[derive(Debug)]
+    #[allow(dead_code)] // read through Debug
+    struct Camera {
+        pixel00: (f32, f32),
+        center: (f32, f32),
+    }
+
+    #[test]
+    fn of_several_differences_the_one_listed_first_is_named() {
+        // The position is named before what it derives, though later in
+        // the text.
+        let camera = |x: f32| Camera {
+            pixel00: (x - 1.0, 0.5),
+            center: (x, 0.0),
+        };
+        let text = |x| settings_text("terrain seed=1 size=9", "octree", &camera(x), &());
+        let diff = settings_difference(&text(1.0), &text(2.0)).unwrap();
+        assert!(
+            diff.starts_with("the camera position (--position")
+                && diff.ends_with(": (1.0, 0.0) against (2.0, 0.0)"),
+            "{diff}"
         );
     }
 

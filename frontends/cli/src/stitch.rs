@@ -56,6 +56,12 @@ pub fn stitch(
         let file = File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
         let part =
             read_part(BufReader::new(file)).map_err(|e| format!("{}: {e}", path.display()))?;
+        if parts.is_empty() {
+            // The frame is known from the first part: a frame too large is
+            // refused before the other parts are read.
+            let placement = &part.placement;
+            fits(placement.frame_width, placement.frame_height, available)?;
+        }
         parts.push((path.as_path(), part));
     }
     assemble(&parts, allow_partial, available)
@@ -153,15 +159,7 @@ pub fn assemble(
 
     // Refused before anything is allocated, naming the bytes; the
     // allocation itself is fallible too, for what the estimate misses.
-    let needed = u128::from(width) * u128::from(height) * FRAME_BYTES_PER_PIXEL;
-    let (bytes, from) = available;
-    if needed > bytes {
-        return Err(format!(
-            "the stitched {width}x{height} frame needs {} with its encoding: more than the {} available ({from})",
-            human_bytes(needed),
-            human_bytes(bytes)
-        ));
-    }
+    fits(width, height, available)?;
     let area = width as usize * height as usize;
     let mut pixels = Vec::new();
     pixels.try_reserve_exact(area).map_err(|_| {
@@ -195,6 +193,25 @@ pub fn assemble(
         missing,
         grid,
     })
+}
+
+/// Checks that a stitched `width x height` frame fits in the `available`
+/// bytes (and where that figure comes from), at
+/// [`FRAME_BYTES_PER_PIXEL`].
+///
+/// # Errors
+/// One line naming the bytes needed and available.
+fn fits(width: u32, height: u32, available: (u128, &str)) -> Result<(), String> {
+    let needed = u128::from(width) * u128::from(height) * FRAME_BYTES_PER_PIXEL;
+    let (bytes, from) = available;
+    if needed > bytes {
+        return Err(format!(
+            "the stitched {width}x{height} frame needs {} with its encoding: more than the {} available ({from})",
+            human_bytes(needed),
+            human_bytes(bytes)
+        ));
+    }
+    Ok(())
 }
 
 /// The preview's stand-in for a missing tile: 8-pixel squares of two grays,
