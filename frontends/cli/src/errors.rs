@@ -1,6 +1,7 @@
-//! clap's errors as the CLI's one line: the message and its hints (the
-//! valid values, the closest flag, how to pass a value that starts with
-//! `-`), without the usage block.
+//! Errors as the CLI's one line: clap's message and its hints (the valid
+//! values, the closest flag, how to pass a value that starts with `-`),
+//! without the usage block; and control characters (a newline in a file
+//! name) escaped, so that a message stays one line.
 
 use clap::error::{ContextKind, ContextValue, ErrorKind};
 
@@ -56,4 +57,33 @@ fn negative_value_tip(error: &clap::Error, argv: &[String]) -> Option<String> {
 
 fn text_has_tip(error: &clap::Error) -> bool {
     error.render().to_string().contains("tip:")
+}
+
+/// `text` with every control character written as Rust writes it in a
+/// string literal (`\n`, `\t`, `\r`, else `\u{1b}`), so that a file name or
+/// a file's text cannot end an `error:` line or start another.
+pub fn escape_controls(text: &str) -> String {
+    let mut escaped = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_control() {
+            escaped.extend(c.escape_debug());
+        } else {
+            escaped.push(c);
+        }
+    }
+    escaped
+}
+
+#[cfg(test)]
+mod tests {
+    use super::escape_controls;
+
+    #[test]
+    fn control_characters_are_escaped_and_the_rest_kept() {
+        assert_eq!(
+            escape_controls("a\nb\tc\r\u{1b}[31m\u{7f}\u{85}é ü/x.png"),
+            "a\\nb\\tc\\r\\u{1b}[31m\\u{7f}\\u{85}é ü/x.png"
+        );
+        assert_eq!(escape_controls("plain"), "plain");
+    }
 }

@@ -3,20 +3,21 @@
 //! belongs, and `voxtrace stitch` puts the parts back together.
 
 use std::ffi::OsString;
-use std::io::{BufWriter, Write};
+use std::io::{BufWriter, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Parser;
 use voxtrace::{Camera, RenderOptions};
-use voxtrace_cli::atomic::{remove_on_signal, write_atomic};
+use voxtrace_cli::atomic::{remove_on_signal, AtomicFile};
 use voxtrace_cli::part::{fnv1a64, settings_text, write_part, Placement};
 use voxtrace_cli::stitch::{list, stitch};
 use voxtrace_cli::tiles::{frames_for_task, tile_name, Grid, TaskIndex};
 use voxtrace_cli::FrameRange;
 
 use crate::args::Args;
-use crate::output;
+use crate::errors::escape_controls;
+use crate::{memory, output};
 
 /// The flags that make a render one task of a job array.
 #[derive(Debug, Clone, clap::Args)]
@@ -183,7 +184,8 @@ struct StitchArgs {
     #[arg(value_name = "PART")]
     parts: Vec<PathBuf>,
 
-    /// The stitched PNG; written whole or not at all.
+    /// The stitched PNG, written whole or not at all; `-` writes it to
+    /// standard output (not a terminal). It cannot be one of the parts.
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
 
@@ -219,7 +221,8 @@ pub fn subcommand() -> Option<ExitCode> {
     Some(match run_stitch(&args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
-            eprintln!("error: {message}");
+            // A part's name or a file's text may hold a newline.
+            eprintln!("error: {}", escape_controls(&message));
             ExitCode::from(2)
         }
     })
@@ -236,13 +239,38 @@ fn run_stitch(args: &StitchArgs) -> Result<(), String> {
     if output::format_of(out, None)? != output::Format::Png {
         return Err(format!("stitch writes PNG, not --out {}", out.display()));
     }
-    let frame = stitch(&args.parts, args.allow_partial)?;
-    let mut png = Vec::new();
-    voxtrace::encode_png(&mut png, frame.width, frame.height, &frame.pixels)
-        .map_err(|e| format!("cannot encode the stitched frame: {e}"))?;
+    let to_stdout = output::is_stdout(out);
+    if to_stdout && std::io::stdout().is_terminal() {
+        return Err(
+            "refusing to write a binary image to a terminal; redirect it or pass --out FILE".into(),
+        );
+    }
+    if to_stdout && stdout_was_closed() {
+        return Err("standard output is closed; redirect it or pass --out FILE".into());
+    }
+    refuse_a_part_as_out(out, to_stdout, &args.parts)?;
+    // Before any output exists: an interrupted stitch then removes its
+    // temporary file and leaves --out as it was.
     remove_on_signal()?;
-    write_atomic(out, |file| file.write_all(&png).map_err(|e| e.to_string()))
-        .map_err(|e| format!("cannot write --out {}: {e}", out.display()))?;
+    let failed = |e: String| format!("cannot write --out {}: {e}", out.display());
+    // Created first, so that a bad --out fails before the parts are read.
+    let file = if to_stdout {
+        None
+    } else {
+        Some(AtomicFile::create(out).map_err(|e| failed(e.to_string()))?)
+    };
+    let frame = stitch(&args.parts, args.allow_partial, memory::available_memory())?;
+    // Encoded as a render encodes its frame: the same file.
+    let (width, height, pixels) = (frame.width, frame.height, &frame.pixels);
+    let encode =
+        |to: &mut dyn Write| output::write(to, output::Format::Png, width, height, pixels, true);
+    match file {
+        Some(mut file) => encode(&mut file)
+            .and_then(|()| file.commit().map_err(|e| e.to_string()))
+            .map_err(failed)?,
+        None => encode(&mut std::io::stdout().lock())
+            .map_err(|e| format!("cannot write to standard output: {e}"))?,
+    }
     if !frame.missing.is_empty() {
         eprintln!(
             "note: missing tiles of the {} grid drawn as a checkerboard: {}",
@@ -251,4 +279,80 @@ fn run_stitch(args: &StitchArgs) -> Result<(), String> {
         );
     }
     Ok(())
+}
+
+/// Refuses an output that is one of the parts, however either is named
+/// (`./t-0.png`, a symlink, a hard link; standard output redirected to
+/// it): the stitch would replace its own input. Files are the same when
+/// their device and inode are.
+fn refuse_a_part_as_out(out: &Path, to_stdout: bool, parts: &[PathBuf]) -> Result<(), String> {
+    let target = if to_stdout {
+        stdout_metadata()
+    } else {
+        std::fs::metadata(out).ok()
+    };
+    let Some(target) = target else {
+        return Ok(()); // a new file is no part
+    };
+    let shown = if to_stdout {
+        "- (standard output)".to_string()
+    } else {
+        out.display().to_string()
+    };
+    for part in parts {
+        if std::fs::metadata(part).is_ok_and(|m| same_file(&m, &target)) {
+            return Err(format!(
+                "--out {shown} is the part {}: the stitch would overwrite its own input",
+                part.display()
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Whether standard output was closed when the process started (`>&-`):
+/// Rust's runtime then opens `/dev/null` read-write in its place, where
+/// every byte would vanish without an error. A shell's `>/dev/null` opens
+/// it write-only, and is kept.
+#[cfg(target_os = "linux")]
+fn stdout_was_closed() -> bool {
+    let on_null = std::fs::read_link("/proc/self/fd/1").is_ok_and(|p| p == Path::new("/dev/null"));
+    let flags = std::fs::read_to_string("/proc/self/fdinfo/1")
+        .ok()
+        .and_then(|info| {
+            let line = info.lines().find(|l| l.starts_with("flags:"))?;
+            u32::from_str_radix(line["flags:".len()..].trim(), 8).ok()
+        });
+    on_null && flags.is_some_and(|f| f & 0o3 == 0o2) // O_RDWR
+}
+
+/// Elsewhere the runtime's stand-in cannot be told from a redirection.
+#[cfg(not(target_os = "linux"))]
+fn stdout_was_closed() -> bool {
+    false
+}
+
+/// What standard output is open on, if it is open.
+#[cfg(unix)]
+fn stdout_metadata() -> Option<std::fs::Metadata> {
+    use std::os::fd::AsFd;
+    let fd = std::io::stdout().as_fd().try_clone_to_owned().ok()?;
+    std::fs::File::from(fd).metadata().ok()
+}
+
+#[cfg(unix)]
+fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    (a.dev(), a.ino()) == (b.dev(), b.ino())
+}
+
+/// Elsewhere std gives no file identity: no check.
+#[cfg(not(unix))]
+fn stdout_metadata() -> Option<std::fs::Metadata> {
+    None
+}
+
+#[cfg(not(unix))]
+fn same_file(_: &std::fs::Metadata, _: &std::fs::Metadata) -> bool {
+    false
 }

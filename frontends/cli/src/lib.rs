@@ -3,7 +3,8 @@
 //! the code the `voxtrace` binary runs, and writes its files the same way
 //! (`atomic`); and the render farm's parts: tile arithmetic and task
 //! indexes (`tiles`), the parts' metadata (`part`) and their assembly
-//! (`stitch`).
+//! (`stitch`, which names a mismatch of settings by its flag:
+//! `settings_diff`).
 //!
 //! Errors are one-line messages meant for a user's terminal.
 
@@ -13,6 +14,7 @@ mod frames;
 mod framing;
 pub mod part;
 mod pipeline;
+mod settings_diff;
 pub mod stitch;
 pub mod tiles;
 mod units;

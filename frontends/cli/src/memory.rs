@@ -73,7 +73,7 @@ impl Budget {
 /// available memory, its cgroup's remaining limit and its address-space
 /// limit (as `prlimit --as` sets it), each when the OS says. Unknown
 /// (not Linux): no limit, and the build's own allocation checks remain.
-fn available_memory() -> (u128, &'static str) {
+pub(crate) fn available_memory() -> (u128, &'static str) {
     let read = |path: &str| std::fs::read_to_string(path).ok();
     let mut best = (u128::MAX, "no limit known");
     let mut take = |bytes: Option<u128>, from: &'static str| {

@@ -18,6 +18,7 @@ use std::io::{BufRead, Seek, Write};
 use voxtrace::Rect;
 
 use crate::tiles::Grid;
+use crate::units::human_bytes;
 
 /// The keyword of the placement chunk.
 pub const PART_KEY: &str = "voxtrace-part";
@@ -217,12 +218,18 @@ pub fn write_part<W: Write>(
 /// there and agree with each other and with the image.
 ///
 /// # Errors
-/// A message saying what is wrong: not a PNG or truncated, no placement
-/// chunk (not a voxtrace tile), a bad placement, a settings text whose hash
-/// is not the placement's, an image that is not the tile's size or not
-/// 8-bit RGBA.
+/// A message saying what is wrong: not a PNG or truncated, a chunk CRC
+/// or the image data's zlib checksum (Adler-32) that does not match, no
+/// placement chunk (not a voxtrace tile), a bad placement, a settings text
+/// whose hash is not the placement's, an image that is not the tile's size
+/// or not 8-bit RGBA, or no memory for its pixels.
 pub fn read_part<R: BufRead + Seek>(reader: R) -> Result<Part, String> {
-    let decoder = png::Decoder::new(reader);
+    let mut options = png::DecodeOptions::default();
+    // The zlib stream's Adler-32 is the one check over the pixels that a
+    // chunk's recomputed CRC does not stand in for; the crate skips it by
+    // default.
+    options.set_ignore_adler32(false);
+    let decoder = png::Decoder::new_with_options(reader, options);
     let mut png = decoder.read_info().map_err(|e| format!("not a PNG: {e}"))?;
     let info = png.info();
     let chunk = |key: &str| {
@@ -243,10 +250,12 @@ pub fn read_part<R: BufRead + Seek>(reader: R) -> Result<Part, String> {
     }
     let (width, height) = (info.width, info.height);
     let rgba8 = info.color_type == png::ColorType::Rgba && info.bit_depth == png::BitDepth::Eight;
-    if !rgba8 {
+    if !rgba8 || info.interlaced {
         return Err(format!(
-            "{:?} {:?}-bit pixels, not the 8-bit RGBA voxtrace writes",
-            info.color_type, info.bit_depth as u8
+            "{:?} {:?}-bit pixels{}, not the 8-bit RGBA voxtrace writes",
+            info.color_type,
+            info.bit_depth as u8,
+            if info.interlaced { ", interlaced" } else { "" }
         ));
     }
     let rect = placement.rect;
@@ -256,25 +265,27 @@ pub fn read_part<R: BufRead + Seek>(reader: R) -> Result<Part, String> {
             rect.width, rect.height
         ));
     }
-    let size = png
-        .output_buffer_size()
-        .ok_or("the image is too large to decode")?;
-    let mut bytes = Vec::new();
-    bytes
-        .try_reserve_exact(size)
-        .map_err(|_| format!("out of memory: cannot decode a {width}x{height} tile"))?;
-    bytes.resize(size, 0);
-    let frame = png
-        .next_frame(&mut bytes)
-        .map_err(|e| format!("corrupt image data: {e}"))?;
-    bytes.truncate(frame.buffer_size());
-    // Up to IEND: a file cut short after its pixels is still a broken copy.
+    // Row by row into the pixels, reserved fallibly: no copy of the tile.
+    let area = width as usize * height as usize;
+    let mut pixels: Vec<u32> = Vec::new();
+    pixels.try_reserve_exact(area).map_err(|_| {
+        format!(
+            "out of memory: cannot decode a {width}x{height} tile ({})",
+            human_bytes(area as u128 * 4)
+        )
+    })?;
+    let corrupt = |e: png::DecodingError| format!("corrupt image data: {e}");
+    while let Some(row) = png.next_row().map_err(corrupt)? {
+        let row = row.data().chunks_exact(4);
+        pixels.extend(row.map(|c| u32::from_ne_bytes([c[0], c[1], c[2], c[3]])));
+    }
+    if pixels.len() != area {
+        return Err("corrupt image data: fewer pixels than the image's size".into());
+    }
+    // Up to IEND: a file cut short after its pixels is still a broken copy
+    // (and the zlib stream's checksum is read only at its end).
     png.finish()
         .map_err(|e| format!("corrupt after the image data: {e}"))?;
-    let pixels = bytes
-        .chunks_exact(4)
-        .map(|c| u32::from_ne_bytes([c[0], c[1], c[2], c[3]]))
-        .collect();
     Ok(Part {
         placement,
         settings,

@@ -11,7 +11,9 @@ use std::io::BufReader;
 use std::path::{Path, PathBuf};
 
 use crate::part::{read_part, Part};
+use crate::settings_diff::settings_difference;
 use crate::tiles::Grid;
+use crate::units::human_bytes;
 
 /// A stitched frame.
 #[derive(Debug)]
@@ -29,21 +31,40 @@ pub struct Stitched {
     pub grid: Grid,
 }
 
-/// Reads the part files at `paths` and assembles their frame.
+/// Bytes per pixel of the frame at a stitch's peak: the frame (4), the
+/// encoder's RGBA copy of it (4) and its compressed stream, which for
+/// pixels that do not compress (parts are anyone's files) is the size of
+/// the copy in a vector grown by doubling (up to 8).
+pub const FRAME_BYTES_PER_PIXEL: u128 = 16;
+
+/// Reads the part files at `paths` and assembles their frame; `available`
+/// is the memory the stitch may still use, and where that figure comes
+/// from (for the message).
 ///
 /// # Errors
 /// One line naming the problem: a file that cannot be read or is not a
 /// voxtrace tile (or is corrupt), parts of different settings, frames or
-/// grids, a tile given twice, or, unless `allow_partial`, missing tiles.
-pub fn stitch(paths: &[PathBuf], allow_partial: bool) -> Result<Stitched, String> {
+/// grids, a tile given twice, unless `allow_partial` missing tiles, or a
+/// frame that needs more than `available` bytes.
+pub fn stitch(
+    paths: &[PathBuf],
+    allow_partial: bool,
+    available: (u128, &str),
+) -> Result<Stitched, String> {
     let mut parts = Vec::with_capacity(paths.len());
     for path in paths {
         let file = File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
         let part =
             read_part(BufReader::new(file)).map_err(|e| format!("{}: {e}", path.display()))?;
+        if parts.is_empty() {
+            // The frame is known from the first part: a frame too large is
+            // refused before the other parts are read.
+            let placement = &part.placement;
+            fits(placement.frame_width, placement.frame_height, available)?;
+        }
         parts.push((path.as_path(), part));
     }
-    assemble(&parts, allow_partial)
+    assemble(&parts, allow_partial, available)
 }
 
 /// Assembles parts already read, each with the path it came from (for
@@ -51,19 +72,34 @@ pub fn stitch(paths: &[PathBuf], allow_partial: bool) -> Result<Stitched, String
 ///
 /// # Errors
 /// As [`stitch`], except reading.
-pub fn assemble(parts: &[(&Path, Part)], allow_partial: bool) -> Result<Stitched, String> {
+pub fn assemble(
+    parts: &[(&Path, Part)],
+    allow_partial: bool,
+    available: (u128, &str),
+) -> Result<Stitched, String> {
     let (first_path, first) = parts.first().ok_or("no parts given")?;
     let one = &first.placement;
     for (path, part) in &parts[1..] {
         let p = &part.placement;
         let names = || format!("{} and {}", first_path.display(), path.display());
-        if p.hash != one.hash {
+        if (p.frame_width, p.frame_height) != (one.frame_width, one.frame_height) {
             return Err(format!(
-                "{} have different settings (hash {:016x} against {:016x}; first difference: {})",
+                "{} are of frames of different sizes ({}x{} against {}x{})",
+                names(),
+                one.frame_width,
+                one.frame_height,
+                p.frame_width,
+                p.frame_height
+            ));
+        }
+        if p.hash != one.hash {
+            let difference = settings_difference(&first.settings, &part.settings)
+                .unwrap_or_else(|| "none in the texts: their hashes collide".into());
+            return Err(format!(
+                "{} have different settings ({difference}; hash {:016x} against {:016x})",
                 names(),
                 one.hash,
                 p.hash,
-                first_difference(&first.settings, &part.settings)
             ));
         }
         if p.frame_number != one.frame_number {
@@ -74,9 +110,7 @@ pub fn assemble(parts: &[(&Path, Part)], allow_partial: bool) -> Result<Stitched
                 p.frame_number
             ));
         }
-        if p.grid != one.grid
-            || (p.frame_width, p.frame_height) != (one.frame_width, one.frame_height)
-        {
+        if p.grid != one.grid {
             return Err(format!(
                 "{} overlap: tiles of different grids ({} against {})",
                 names(),
@@ -123,11 +157,17 @@ pub fn assemble(parts: &[(&Path, Part)], allow_partial: bool) -> Result<Stitched
         ));
     }
 
+    // Refused before anything is allocated, naming the bytes; the
+    // allocation itself is fallible too, for what the estimate misses.
+    fits(width, height, available)?;
     let area = width as usize * height as usize;
     let mut pixels = Vec::new();
-    pixels
-        .try_reserve_exact(area)
-        .map_err(|_| format!("out of memory: cannot allocate a {width}x{height} image"))?;
+    pixels.try_reserve_exact(area).map_err(|_| {
+        format!(
+            "out of memory: cannot allocate the stitched {width}x{height} frame ({})",
+            human_bytes(area as u128 * 4)
+        )
+    })?;
     pixels.resize(area, 0);
     let mut paste = |tile: u32, pixel: &dyn Fn(u32, u32, usize) -> u32| {
         let rect = grid.tile(width, height, tile).expect("a tile of the grid");
@@ -155,6 +195,25 @@ pub fn assemble(parts: &[(&Path, Part)], allow_partial: bool) -> Result<Stitched
     })
 }
 
+/// Checks that a stitched `width x height` frame fits in the `available`
+/// bytes (and where that figure comes from), at
+/// [`FRAME_BYTES_PER_PIXEL`].
+///
+/// # Errors
+/// One line naming the bytes needed and available.
+fn fits(width: u32, height: u32, available: (u128, &str)) -> Result<(), String> {
+    let needed = u128::from(width) * u128::from(height) * FRAME_BYTES_PER_PIXEL;
+    let (bytes, from) = available;
+    if needed > bytes {
+        return Err(format!(
+            "the stitched {width}x{height} frame needs {} with its encoding: more than the {} available ({from})",
+            human_bytes(needed),
+            human_bytes(bytes)
+        ));
+    }
+    Ok(())
+}
+
 /// The preview's stand-in for a missing tile: 8-pixel squares of two grays,
 /// laid in frame coordinates so that neighbouring missing tiles join up.
 fn checker(x: u32, y: u32, _: usize) -> u32 {
@@ -168,13 +227,4 @@ fn checker(x: u32, y: u32, _: usize) -> u32 {
 pub fn list(tiles: &[u32]) -> String {
     let words: Vec<String> = tiles.iter().map(u32::to_string).collect();
     words.join(", ")
-}
-
-/// The first word where two settings texts differ, for a mismatch message.
-fn first_difference(a: &str, b: &str) -> String {
-    let mut words = a.split(' ').zip(b.split(' '));
-    match words.find(|(x, y)| x != y) {
-        Some((x, y)) => format!("'{x}' against '{y}'"),
-        None => "one text is longer".to_string(),
-    }
 }

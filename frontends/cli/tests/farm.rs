@@ -256,7 +256,12 @@ fn stitch_refuses_parts_that_do_not_make_one_frame() {
     let other = render_tiles(&other_dir, "2x2", &["--seed", "9"]);
     refused(
         &stitch(&[p(0), p(1), other[2].clone(), p(3)], &out, &[]),
-        &["different settings", "'seed=3' against 'seed=9'"],
+        &["different settings", "--seed: 3 against 9"],
+    );
+    let shadows = render_tiles(&scratch("refusals-shadows"), "2x2", &["--shadows"]);
+    refused(
+        &stitch(&[p(0), shadows[1].clone(), p(2), p(3)], &out, &[]),
+        &["different settings", "--shadows: false against true"],
     );
     let coarse = render_tiles(&scratch("refusals-coarse"), "1x2", &[]);
     refused(

@@ -151,7 +151,7 @@ fn assemble_named(parts: &[Part], allow_partial: bool) -> Result<Stitched, Strin
         .map(PathBuf::as_path)
         .zip(parts.iter().cloned())
         .collect();
-    assemble(&named, allow_partial)
+    assemble(&named, allow_partial, (u128::MAX, "no limit"))
 }
 
 #[test]
@@ -193,7 +193,7 @@ fn assembly_refuses_parts_that_do_not_fit_and_names_the_problem() {
     let err = refuse(&other);
     assert!(
         err.starts_with("tile-0.png and tile-7.png have different settings")
-            && err.ends_with("first difference: 'seed=1' against 'seed=2')"),
+            && err.contains("seed: 1 against 2"),
         "{err}"
     );
 
@@ -208,12 +208,41 @@ fn assembly_refuses_parts_that_do_not_fit_and_names_the_problem() {
     short[4].pixels.pop();
     assert!(refuse(&short).starts_with("tile-4.png: its rectangle or pixels"));
 
+    let mut larger = parts.clone();
+    larger[6] = parts_of(grid, 128, 72, "seed=1").swap_remove(6);
+    assert_eq!(
+        refuse(&larger),
+        "tile-0.png and tile-6.png are of frames of different sizes (64x36 against 128x72)"
+    );
+
     let mut coarse = parts.clone();
     coarse[9] = parts_of(Grid::new(2, 2).unwrap(), 64, 36, "seed=1").swap_remove(1);
     let err = refuse(&coarse);
     assert!(
         err.contains("overlap") && err.contains("4x4 against 2x2"),
         "{err}"
+    );
+}
+
+#[test]
+fn a_frame_that_does_not_fit_in_memory_is_refused_before_it_is_allocated() {
+    let grid = Grid::new(2, 2).unwrap();
+    let parts: Vec<(PathBuf, Part)> = parts_of(grid, 64, 36, "a")
+        .into_iter()
+        .map(|p| (PathBuf::from(format!("tile-{}.png", p.placement.tile)), p))
+        .collect();
+    let named: Vec<(&Path, Part)> = parts
+        .iter()
+        .map(|(n, p)| (n.as_path(), p.clone()))
+        .collect();
+    // 64 x 36 pixels of 16 bytes each (frame, encoder copy, stream).
+    let fits = assemble(&named, false, (36_864, "a test's limit"));
+    assert_eq!(fits.unwrap().pixels.len(), 64 * 36);
+    let err = assemble(&named, false, (36_863, "a test's limit")).unwrap_err();
+    assert_eq!(
+        err,
+        "the stitched 64x36 frame needs 36 KiB (36864 bytes) with its encoding: \
+         more than the 36 KiB (36863 bytes) available (a test's limit)"
     );
 }
 

@@ -1,0 +1,400 @@
+//! `voxtrace stitch` under attack: an `--out` that is one of its parts, a
+//! part whose pixels were altered with its chunk CRC fixed up, `--out -`,
+//! signals, a frame too large for memory and file names with newlines. Each
+//! is one `error:` line and exit 2 (130/143 for a signal), or the frame.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+use common::limits::{check_contract, run_limited, tools_present};
+use common::run::{scratch_in, stderr};
+use voxtrace_cli::part::{fnv1a64, write_part, Placement};
+use voxtrace_cli::tiles::Grid;
+
+/// A fresh empty directory for one test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = scratch_in("stitch", name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// `voxtrace stitch ARGS` run in `dir`.
+fn stitch_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_voxtrace"))
+        .arg("stitch")
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the binary runs")
+}
+
+/// Exit 2 and exactly one line on stderr, starting with `error:` and
+/// containing each of `needles`.
+fn refused(out: &Output, needles: &[&str]) {
+    let text = stderr(out);
+    assert_eq!(out.status.code(), Some(2), "{text}");
+    assert_eq!(text.lines().count(), 1, "{text}");
+    assert!(text.starts_with("error: "), "{text}");
+    for needle in needles {
+        assert!(text.contains(needle), "{needle:?} not in {text}");
+    }
+}
+
+const SETTINGS: &str = "voxtrace=test subject=[terrain seed=1 size=30]";
+
+/// Writes tile `tile` of `grid` over a `width x height` frame into `path`,
+/// its pixel at (x, y) being `x + 1000 y`.
+fn write_tile(path: &Path, grid: Grid, width: u32, height: u32, tile: u32) {
+    let rect = grid.tile(width, height, tile).unwrap();
+    let placement = Placement {
+        frame_width: width,
+        frame_height: height,
+        grid,
+        tile,
+        rect,
+        frame_number: 0,
+        hash: fnv1a64(SETTINGS.as_bytes()),
+    };
+    let pixels: Vec<u32> = (rect.y..rect.y + rect.height)
+        .flat_map(|y| (rect.x..rect.x + rect.width).map(move |x| x + 1000 * y))
+        .collect();
+    let file = std::fs::File::create(path).unwrap();
+    write_part(file, &placement, SETTINGS, &pixels).unwrap();
+}
+
+/// The two tiles of a 2x1 grid over a 20x10 frame, `t-0.png` and `t-1.png`
+/// in `dir`.
+fn two_tiles(dir: &Path) -> [PathBuf; 2] {
+    let grid = Grid::new(2, 1).unwrap();
+    [0, 1].map(|tile| {
+        let path = dir.join(format!("t-{tile}.png"));
+        write_tile(&path, grid, 20, 10, tile);
+        path
+    })
+}
+
+#[cfg(unix)]
+#[test]
+fn an_out_that_is_one_of_the_parts_is_refused_however_it_is_spelled() {
+    let dir = scratch("out-is-part");
+    let parts = two_tiles(&dir);
+    let before = std::fs::read(&parts[0]).unwrap();
+    std::os::unix::fs::symlink("t-0.png", dir.join("link.png")).unwrap();
+    std::fs::create_dir(dir.join("sub")).unwrap();
+    for (args, named) in [
+        (["t-0.png", "t-1.png", "--out", "t-0.png"], "t-0.png"),
+        (["t-0.png", "t-1.png", "--out", "./t-0.png"], "t-0.png"),
+        (["t-0.png", "t-1.png", "--out", "sub/../t-1.png"], "t-1.png"),
+        // The output through a symlink to a part, and a part through one.
+        (["t-0.png", "t-1.png", "--out", "link.png"], "t-0.png"),
+        (["link.png", "t-1.png", "--out", "t-0.png"], "link.png"),
+    ] {
+        let out = stitch_in(&dir, &args);
+        refused(&out, &["--out", "is the part", named]);
+    }
+    assert_eq!(std::fs::read(&parts[0]).unwrap(), before);
+    // Hard links are the same file too.
+    std::fs::hard_link(&parts[1], dir.join("hard.png")).unwrap();
+    refused(
+        &stitch_in(&dir, &["t-0.png", "t-1.png", "--out", "hard.png"]),
+        &["is the part t-1.png"],
+    );
+    // A different file of the same name elsewhere is fine.
+    let ok = stitch_in(&dir, &["t-0.png", "t-1.png", "--out", "sub/t-0.png"]);
+    assert!(ok.status.success(), "{}", stderr(&ok));
+}
+
+/// The CRC-32 of PNG chunks (ISO 3309, as the PNG spec gives it).
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &b in bytes {
+        crc ^= u32::from(b);
+        for _ in 0..8 {
+            crc = if crc & 1 == 1 {
+                (crc >> 1) ^ 0xedb8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+/// `png` re-encoded with its image data stored uncompressed (so that any
+/// byte of it can change and the stream still inflates) and the first
+/// pixel's red byte flipped, the IDAT chunk's CRC recomputed: only the
+/// zlib stream's Adler-32 still tells.
+fn flip_a_pixel_byte(png: &[u8]) -> Vec<u8> {
+    let decoder = png::Decoder::new(std::io::Cursor::new(png));
+    let mut reader = decoder.read_info().unwrap();
+    let mut pixels = vec![0; reader.output_buffer_size().unwrap()];
+    reader.next_frame(&mut pixels).unwrap();
+    let info = reader.info().clone();
+    let mut stored = Vec::new();
+    let mut encoder = png::Encoder::new(&mut stored, info.width, info.height);
+    encoder.set_color(info.color_type);
+    encoder.set_depth(info.bit_depth);
+    encoder.set_compression(png::Compression::NoCompression);
+    encoder.set_filter(png::Filter::NoFilter);
+    for chunk in &info.uncompressed_latin1_text {
+        encoder
+            .add_text_chunk(chunk.keyword.clone(), chunk.text.clone())
+            .unwrap();
+    }
+    let mut writer = encoder.write_header().unwrap();
+    writer.write_image_data(&pixels).unwrap();
+    writer.finish().unwrap();
+
+    let idat = stored.windows(4).position(|w| w == b"IDAT").unwrap() - 4;
+    let len = u32::from_be_bytes(stored[idat..idat + 4].try_into().unwrap()) as usize;
+    // zlib header (2), stored block header (5), row 0's filter byte (1).
+    stored[idat + 8 + 2 + 5 + 1] ^= 0x40;
+    let crc = crc32(&stored[idat + 4..idat + 8 + len]);
+    stored[idat + 8 + len..idat + 12 + len].copy_from_slice(&crc.to_be_bytes());
+    // The tampered file is still a valid PNG to the png crate's default
+    // decoder, which skips Adler-32: only the pixel differs.
+    let lax = png::Decoder::new(std::io::Cursor::new(&stored));
+    let mut reader = lax.read_info().unwrap();
+    let mut altered = vec![0; reader.output_buffer_size().unwrap()];
+    reader.next_frame(&mut altered).unwrap();
+    assert_eq!(altered[0], pixels[0] ^ 0x40);
+    assert_eq!(altered[1..], pixels[1..]);
+    stored
+}
+
+#[test]
+fn a_part_whose_image_data_was_altered_is_refused_naming_it() {
+    let dir = scratch("adler");
+    let parts = two_tiles(&dir);
+    let tampered = dir.join("tampered.png");
+    std::fs::write(
+        &tampered,
+        flip_a_pixel_byte(&std::fs::read(&parts[1]).unwrap()),
+    )
+    .unwrap();
+    let out = stitch_in(&dir, &["t-0.png", "tampered.png", "--out", "frame.png"]);
+    refused(&out, &["tampered.png", "corrupt"]);
+    assert!(!dir.join("frame.png").exists());
+}
+
+/// The frame of `two_tiles` as a PNG, stitched into a file.
+fn stitched_file(dir: &Path) -> Vec<u8> {
+    let out = stitch_in(dir, &["t-0.png", "t-1.png", "--out", "file.png"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    std::fs::read(dir.join("file.png")).unwrap()
+}
+
+#[test]
+fn out_dash_writes_the_frame_to_standard_output() {
+    let dir = scratch("stdout");
+    two_tiles(&dir);
+    let out = stitch_in(&dir, &["t-0.png", "t-1.png", "--out", "-"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(out.stdout == stitched_file(&dir), "stdout is not the frame");
+    assert!(!dir.join("-").exists(), "a file named - was written");
+}
+
+#[cfg(unix)]
+#[test]
+fn out_dash_to_a_full_disk_a_closed_pipe_or_no_stdout_is_one_error_line() {
+    let dir = scratch("stdout-fails");
+    two_tiles(&dir);
+    let run = |stdout: Stdio| {
+        Command::new(env!("CARGO_BIN_EXE_voxtrace"))
+            .args(["stitch", "t-0.png", "t-1.png", "--out", "-"])
+            .current_dir(&dir)
+            .stdout(stdout)
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap()
+    };
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    let out = run(full.into()).wait_with_output().unwrap();
+    refused(&out, &["standard output"]);
+
+    // A pipe whose reader has gone: the write fails with EPIPE.
+    let mut child = run(Stdio::piped());
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    refused(&out, &["standard output"]);
+
+    // Closed (`>&-`): Rust's runtime puts /dev/null there, which must not
+    // swallow the frame; a redirection to /dev/null is still fine.
+    let shell = |redirect: &str| {
+        Command::new("sh")
+            .arg("-c")
+            .arg(format!(
+                "exec \"$0\" stitch t-0.png t-1.png --out - {redirect}"
+            ))
+            .arg(env!("CARGO_BIN_EXE_voxtrace"))
+            .current_dir(&dir)
+            .output()
+            .unwrap()
+    };
+    if cfg!(target_os = "linux") {
+        refused(&shell(">&-"), &["standard output is closed"]);
+    }
+    let null = shell(">/dev/null");
+    assert!(null.status.success(), "{}", stderr(&null));
+}
+
+#[cfg(unix)]
+#[test]
+fn out_dash_refuses_a_terminal() {
+    let Some(terminal) = pseudo_terminal() else {
+        eprintln!("skipped: no pseudo-terminal here");
+        return;
+    };
+    let dir = scratch("stdout-tty");
+    two_tiles(&dir);
+    let out = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
+        .args(["stitch", "t-0.png", "t-1.png", "--out", "-"])
+        .current_dir(&dir)
+        .stdout(terminal)
+        .output()
+        .unwrap();
+    refused(&out, &["terminal", "--out FILE"]);
+}
+
+/// The terminal end of a new pseudo-terminal (its other end is leaked:
+/// the test is short).
+#[cfg(unix)]
+fn pseudo_terminal() -> Option<std::fs::File> {
+    #[allow(unsafe_code)]
+    // SAFETY: plain libc calls on a descriptor this function owns; the
+    // name buffer is large and NUL-terminated by ptsname_r on success.
+    let name = unsafe {
+        let master = libc::posix_openpt(libc::O_RDWR | libc::O_NOCTTY);
+        if master < 0 || libc::grantpt(master) != 0 || libc::unlockpt(master) != 0 {
+            return None;
+        }
+        let mut name = [0 as libc::c_char; 256];
+        if libc::ptsname_r(master, name.as_mut_ptr(), name.len()) != 0 {
+            return None;
+        }
+        std::ffi::CStr::from_ptr(name.as_ptr())
+            .to_string_lossy()
+            .into_owned()
+    };
+    std::fs::OpenOptions::new()
+        .read(true)
+        .write(true)
+        .open(name)
+        .ok()
+}
+
+/// SIGTERM while the stitch waits on a part (a FIFO no one writes): exit
+/// 143 with one `error:` line, the old `--out` kept, no temporary file.
+#[cfg(unix)]
+#[test]
+fn a_signal_during_a_stitch_is_one_error_line_and_leaves_no_temporary_file() {
+    let dir = scratch("signal");
+    two_tiles(&dir);
+    let made = Command::new("mkfifo").arg(dir.join("fifo.png")).status();
+    if !made.is_ok_and(|s| s.success()) {
+        eprintln!("skipped: mkfifo is not available");
+        return;
+    }
+    std::fs::write(dir.join("frame.png"), b"the old file").unwrap();
+    let child = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
+        .args(["stitch", "t-0.png", "fifo.png", "--out", "frame.png"])
+        .current_dir(&dir)
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Wait until the signal thread runs (the handler is installed), or
+    // give up after a while and signal anyway.
+    let task = format!("/proc/{}/task", child.id());
+    let started = Instant::now();
+    while started.elapsed() < Duration::from_secs(10) {
+        let threads = std::fs::read_dir(&task).map_or(0, Iterator::count);
+        if threads >= 2 {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    std::thread::sleep(Duration::from_millis(100));
+    let killed = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let out = child.wait_with_output().unwrap();
+    let text = stderr(&out);
+    assert_eq!(out.status.code(), Some(143), "{text}");
+    assert_eq!(text.lines().count(), 1, "{text}");
+    assert!(
+        text.starts_with("error: ") && text.contains("SIGTERM"),
+        "{text}"
+    );
+    assert_eq!(
+        std::fs::read(dir.join("frame.png")).unwrap(),
+        b"the old file"
+    );
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["fifo.png", "frame.png", "t-0.png", "t-1.png"]);
+}
+
+/// A part of a 12000x12000 frame (a 47x47 tile of a 256x256 grid) stitched
+/// with `--allow-partial` under a 1 GiB address space: the frame and the
+/// encoder's copy do not fit, and the refusal names the bytes instead of
+/// an allocation failure aborting the process.
+#[test]
+fn a_frame_too_large_for_memory_is_refused_naming_the_bytes() {
+    if !tools_present() {
+        eprintln!("skipped: prlimit or timeout is missing");
+        return;
+    }
+    let dir = scratch("huge");
+    let part = dir.join("huge-0.png");
+    write_tile(&part, Grid::new(256, 256).unwrap(), 12000, 12000, 0);
+    let out = dir.join("frame.png");
+    let args: Vec<String> = vec![
+        "stitch".into(),
+        part.display().to_string(),
+        "--allow-partial".into(),
+        "--out".into(),
+        out.display().to_string(),
+    ];
+    let ended = run_limited(&args);
+    check_contract("stitch of a 12000x12000 frame", &ended).unwrap();
+    assert_eq!(ended.code, Some(2), "{}", ended.stderr);
+    assert!(
+        ended.stderr.contains("12000x12000") && ended.stderr.contains(" bytes)"),
+        "{}",
+        ended.stderr
+    );
+    assert!(!out.exists());
+}
+
+/// A part named with a newline (and an escape sequence): the refusal is
+/// still one line, the characters shown escaped.
+#[test]
+fn a_part_path_with_a_newline_is_one_error_line() {
+    let dir = scratch("newline");
+    two_tiles(&dir);
+    let out = stitch_in(
+        &dir,
+        &[
+            "t-0.png",
+            "absent\nerror: forged\u{1b}[2K.png",
+            "--out",
+            "f.png",
+        ],
+    );
+    refused(&out, &["absent\\nerror: forged\\u{1b}[2K.png"]);
+    std::fs::copy(dir.join("t-1.png"), dir.join("new\nline.png")).unwrap();
+    let out = stitch_in(&dir, &["t-1.png", "new\nline.png", "--out", "f.png"]);
+    refused(&out, &["duplicate tile 1", "new\\nline.png"]);
+}
