@@ -8,7 +8,12 @@ use clap::error::{ContextKind, ContextValue, ErrorKind};
 /// `error` rendered on one line starting with `error:`; `argv` is the
 /// command line (for the tip about negative values).
 pub fn one_line(error: &clap::Error, argv: &[String]) -> String {
-    let text = error.render().to_string();
+    let mut text = error.render().to_string();
+    // A value clap quotes is written as given: escape the control
+    // characters of those that have them before the lines are joined.
+    for arg in argv.iter().filter(|a| a.chars().any(char::is_control)) {
+        text = text.replace(arg.as_str(), &escape_controls(arg));
+    }
     let mut line = String::new();
     for part in text.lines().map(str::trim) {
         if part.is_empty() || part.starts_with("Usage:") || part.starts_with("For more information")

@@ -3,20 +3,19 @@
 //! belongs, and `voxtrace stitch` puts the parts back together.
 
 use std::ffi::OsString;
-use std::io::{BufWriter, IsTerminal, Write};
+use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Parser;
 use voxtrace::{Camera, RenderOptions};
-use voxtrace_cli::atomic::{remove_on_signal, AtomicFile};
+use voxtrace_cli::atomic::{exit_with_error, remove_on_signal, AtomicFile};
 use voxtrace_cli::part::{fnv1a64, settings_text, write_part, Placement};
 use voxtrace_cli::stitch::{list, stitch};
 use voxtrace_cli::tiles::{frames_for_task, tile_name, Grid, TaskIndex};
 use voxtrace_cli::FrameRange;
 
 use crate::args::Args;
-use crate::errors::escape_controls;
 use crate::{memory, output};
 
 /// The flags that make a render one task of a job array.
@@ -220,11 +219,7 @@ pub fn subcommand() -> Option<ExitCode> {
     };
     Some(match run_stitch(&args) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(message) => {
-            // A part's name or a file's text may hold a newline.
-            eprintln!("error: {}", escape_controls(&message));
-            ExitCode::from(2)
-        }
+        Err(message) => exit_with_error(&message),
     })
 }
 
@@ -240,13 +235,8 @@ fn run_stitch(args: &StitchArgs) -> Result<(), String> {
         return Err(format!("stitch writes PNG, not --out {}", out.display()));
     }
     let to_stdout = output::is_stdout(out);
-    if to_stdout && std::io::stdout().is_terminal() {
-        return Err(
-            "refusing to write a binary image to a terminal; redirect it or pass --out FILE".into(),
-        );
-    }
-    if to_stdout && stdout_was_closed() {
-        return Err("standard output is closed; redirect it or pass --out FILE".into());
+    if to_stdout {
+        output::check_stdout()?;
     }
     refuse_a_part_as_out(out, to_stdout, &args.parts)?;
     // Before any output exists: an interrupted stitch then removes its
@@ -268,7 +258,9 @@ fn run_stitch(args: &StitchArgs) -> Result<(), String> {
         Some(mut file) => encode(&mut file)
             .and_then(|()| file.commit().map_err(|e| e.to_string()))
             .map_err(failed)?,
-        None => encode(&mut std::io::stdout().lock())
+        None => output::stdout()
+            .map_err(|e| e.to_string())
+            .and_then(|mut out| encode(&mut out))
             .map_err(|e| format!("cannot write to standard output: {e}"))?,
     }
     if !frame.missing.is_empty() {
@@ -308,28 +300,6 @@ fn refuse_a_part_as_out(out: &Path, to_stdout: bool, parts: &[PathBuf]) -> Resul
         }
     }
     Ok(())
-}
-
-/// Whether standard output was closed when the process started (`>&-`):
-/// Rust's runtime then opens `/dev/null` read-write in its place, where
-/// every byte would vanish without an error. A shell's `>/dev/null` opens
-/// it write-only, and is kept.
-#[cfg(target_os = "linux")]
-fn stdout_was_closed() -> bool {
-    let on_null = std::fs::read_link("/proc/self/fd/1").is_ok_and(|p| p == Path::new("/dev/null"));
-    let flags = std::fs::read_to_string("/proc/self/fdinfo/1")
-        .ok()
-        .and_then(|info| {
-            let line = info.lines().find(|l| l.starts_with("flags:"))?;
-            u32::from_str_radix(line["flags:".len()..].trim(), 8).ok()
-        });
-    on_null && flags.is_some_and(|f| f & 0o3 == 0o2) // O_RDWR
-}
-
-/// Elsewhere the runtime's stand-in cannot be told from a redirection.
-#[cfg(not(target_os = "linux"))]
-fn stdout_was_closed() -> bool {
-    false
 }
 
 /// What standard output is open on, if it is open.

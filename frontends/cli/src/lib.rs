@@ -6,9 +6,11 @@
 //! (`stitch`, which names a mismatch of settings by its flag:
 //! `settings_diff`).
 //!
-//! Errors are one-line messages meant for a user's terminal.
+//! Errors are one-line messages meant for a user's terminal (`errors`:
+//! clap's errors on one line, control characters escaped).
 
 pub mod atomic;
+pub mod errors;
 mod export;
 mod frames;
 mod framing;

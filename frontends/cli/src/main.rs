@@ -6,7 +6,6 @@
 
 mod args;
 mod effects;
-mod errors;
 mod farm;
 mod memory;
 mod output;
@@ -25,6 +24,7 @@ use voxtrace::{
     VoxModel, VoxelGenerator, VoxelSource,
 };
 use voxtrace_cli::atomic::{exit_with_error, remove_on_signal, AtomicFile};
+use voxtrace_cli::errors::{self, escape_controls};
 use voxtrace_cli::{
     export_vox, frame_path, on_threads, terrain_box, turntable, Boxes, BuiltScene, FrameRange,
 };
@@ -241,8 +241,13 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     };
     job.render_all(&cameras, &paths, first_file, &mut notes)?;
     // Notes only after a success: an error stays the one line on stderr.
-    warnings.iter().for_each(|w| eprintln!("warning: {w}"));
-    notes.iter().for_each(|note| eprintln!("note: {note}"));
+    // Escaped: a path a warning quotes cannot start a line of its own.
+    warnings
+        .iter()
+        .for_each(|w| eprintln!("warning: {}", escape_controls(w)));
+    notes
+        .iter()
+        .for_each(|note| eprintln!("note: {}", escape_controls(note)));
     Ok(())
 }
 

@@ -187,6 +187,55 @@ fn the_bombs_are_refused_by_the_count_naming_the_limit() {
     }
 }
 
+/// A value an error quotes cannot break its line: a newline in `--out`,
+/// `--vox`, an `env:VAR` value or a flag's value is written as `\n`, and
+/// the forged `error:` after it stays inside the one line.
+#[test]
+fn a_newline_in_a_quoted_value_stays_on_the_error_line() {
+    let dir = scratch("hostile-newlines");
+    let forged = "x\nerror: forged";
+    let out = dir.join("out.png");
+    let cases: Vec<(&str, Vec<String>)> = vec![
+        (
+            "--out",
+            base(&dir.join(format!("missing-{forged}/out.png"))),
+        ),
+        ("--vox", {
+            let mut a = base(&out);
+            a.extend([
+                "--vox".into(),
+                dir.join(format!("{forged}.vox")).display().to_string(),
+            ]);
+            a
+        }),
+        ("env:VAR", {
+            let mut a = base(&out);
+            a.extend(
+                ["--tiles", "2x2", "--tile-index", "env:VOXTRACE_TEST_INDEX"].map(String::from),
+            );
+            a
+        }),
+        ("--size", {
+            let mut a = base(&out);
+            a.extend(["--size".into(), forged.to_string()]);
+            a
+        }),
+    ];
+    for (name, args) in cases {
+        let result = std::process::Command::new(env!("CARGO_BIN_EXE_voxtrace"))
+            .args(&args)
+            .env("VOXTRACE_TEST_INDEX", forged)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert_eq!(result.status.code(), Some(2), "{name}: {stderr}");
+        let lines: Vec<&str> = stderr.trim_end().lines().collect();
+        assert_eq!(lines.len(), 1, "{name}: {stderr}");
+        assert!(lines[0].starts_with("error: "), "{name}: {stderr}");
+        assert!(lines[0].contains("x\\nerror: forged"), "{name}: {stderr}");
+    }
+}
+
 /// A bad `--out` fails at once, before a build of seconds: a directory
 /// (by its kind, through a link, or by a trailing `/`) and a missing
 /// folder. Within 1 s for the optimized binary (`.ci/run`), which needs

@@ -239,7 +239,7 @@ fn out_dash_to_a_full_disk_a_closed_pipe_or_no_stdout_is_one_error_line() {
             .unwrap()
     };
     if cfg!(target_os = "linux") {
-        refused(&shell(">&-"), &["standard output is closed"]);
+        refused(&shell(">&-"), &["standard output, which is closed"]);
     }
     let null = shell(">/dev/null");
     assert!(null.status.success(), "{}", stderr(&null));

@@ -295,13 +295,14 @@ pub fn remove_on_signal() -> Result<(), String> {
     Ok(())
 }
 
-/// Prints `error: MESSAGE` and exits 2, holding the lock that a caught
-/// signal's cleanup takes: a signal arriving at the same moment (SIGXFSZ
-/// comes with the write that fails) cannot add a second line. Call it with
-/// every [`AtomicFile`] dropped.
+/// Prints `error: MESSAGE` on one line (control characters escaped, so a
+/// quoted path or value cannot end the line or forge another) and exits 2,
+/// holding the lock that a caught signal's cleanup takes: a signal
+/// arriving at the same moment (SIGXFSZ comes with the write that fails)
+/// cannot add a second line. Call it with every [`AtomicFile`] dropped.
 pub fn exit_with_error(message: &str) -> ! {
     let _held = pending();
-    eprintln!("error: {message}");
+    eprintln!("error: {}", crate::errors::escape_controls(message));
     std::process::exit(2)
 }
 
