@@ -59,7 +59,7 @@ pub fn task_frames(args: &Args, frames: Option<u32>) -> Result<Option<FrameRange
     let frames = frames.ok_or("--tasks splits an animation: it needs --frames N")?;
     frames_for_task(0, tasks, frames)?; // the task count first, then the index
     let what = format!("the {tasks} tasks");
-    let index = index.resolve("--task-index", tasks, &what, |var| std::env::var(var).ok())?;
+    let index = index.resolve("--task-index", tasks, &what, |var| std::env::var(var))?;
     let run = frames_for_task(index, tasks, frames)?;
     // Frames count from 1.
     Ok(Some(FrameRange {
@@ -117,9 +117,7 @@ pub fn select(
     let (width, height) = (camera.width(), camera.height());
     grid.fits(width, height)?;
     let what = format!("the {grid} grid's tiles");
-    let tile = index.resolve("--tile-index", grid.count(), &what, |var| {
-        std::env::var(var).ok()
-    })?;
+    let tile = index.resolve("--tile-index", grid.count(), &what, |var| std::env::var(var))?;
     let rect = grid
         .tile(width, height, tile)
         .ok_or("the tile index is out of range")?; // resolve checked it
