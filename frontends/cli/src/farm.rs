@@ -117,7 +117,9 @@ pub fn select(
     let (width, height) = (camera.width(), camera.height());
     grid.fits(width, height)?;
     let what = format!("the {grid} grid's tiles");
-    let tile = index.resolve("--tile-index", grid.count(), &what, |var| std::env::var(var))?;
+    let tile = index.resolve("--tile-index", grid.count(), &what, |var| {
+        std::env::var(var)
+    })?;
     let rect = grid
         .tile(width, height, tile)
         .ok_or("the tile index is out of range")?; // resolve checked it

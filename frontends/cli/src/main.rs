@@ -302,7 +302,12 @@ impl Job<'_> {
     /// created up front) or else `path` (standard output for `-`), in the
     /// run's format, as a part with `--tiles`; a file replaces its path
     /// only once written whole.
-    fn write(&self, first: Option<AtomicFile>, path: &Path, pixels: Vec<u32>) -> Result<(), String> {
+    fn write(
+        &self,
+        first: Option<AtomicFile>,
+        path: &Path,
+        pixels: Vec<u32>,
+    ) -> Result<(), String> {
         let region = self.region;
         let alpha = self.options.background == Background::Transparent;
         let failed = |e: String| format!("cannot write --out {}: {e}", path.display());

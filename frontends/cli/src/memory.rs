@@ -226,12 +226,22 @@ mod tests {
         };
         let small = (1, 0);
         let terrain = refuse(Backend::Dense, None, small);
-        assert!(terrain.ends_with("try --backend octree, a smaller --size, or --max-memory to override"), "{terrain}");
+        assert!(
+            terrain
+                .ends_with("try --backend octree, a smaller --size, or --max-memory to override"),
+            "{terrain}"
+        );
         let terrain = refuse(Backend::Octree, None, small);
-        assert!(terrain.ends_with("try a smaller --size, or --max-memory to override"), "{terrain}");
+        assert!(
+            terrain.ends_with("try a smaller --size, or --max-memory to override"),
+            "{terrain}"
+        );
         // A .vox model's size is its own: --size does nothing to it.
         let model = refuse(Backend::Dense, Some(1 << 20), small);
-        assert!(model.ends_with("try --backend octree, or --max-memory to override"), "{model}");
+        assert!(
+            model.ends_with("try --backend octree, or --max-memory to override"),
+            "{model}"
+        );
         let model = refuse(Backend::Octree, Some(1 << 20), small);
         assert!(model.ends_with("try --max-memory to override"), "{model}");
         // A frame larger than the storage: a smaller frame, for either.

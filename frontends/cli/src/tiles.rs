@@ -311,9 +311,8 @@ mod tests {
             "{bytes}"
         );
         assert!(resolve("env:").is_err() && resolve("-1").is_err());
-        let big = TaskIndex::Number(20).resolve("--tile-index", 16, "tiles", |_| {
-            Err(VarError::NotPresent)
-        });
+        let big = TaskIndex::Number(20)
+            .resolve("--tile-index", 16, "tiles", |_| Err(VarError::NotPresent));
         assert!(big.unwrap_err().contains("out of range"));
     }
 
