@@ -200,3 +200,33 @@ fn encode_other(
     }
     .map_err(|e| e.to_string())
 }
+
+#[cfg(all(test, feature = "image"))]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rgb_in_place_keeps_each_pixels_first_three_bytes_in_order() {
+        let pixels: Vec<u32> = (0..7u8)
+            .map(|i| u32::from_ne_bytes([i, 10 + i, 20 + i, 30 + i]))
+            .collect();
+        let expected: Vec<u8> = pixels
+            .iter()
+            .flat_map(|p| p.to_ne_bytes()[..3].to_vec())
+            .collect();
+        let mut converted = pixels.clone();
+        assert_eq!(rgb_in_place(&mut converted), expected.as_slice());
+    }
+
+    #[test]
+    fn only_the_tga_encoder_copies_the_image() {
+        let tga = Format::Other(image::ImageFormat::Tga);
+        assert_eq!(encoder_bytes(tga, 100, 10, true), 4000);
+        assert_eq!(encoder_bytes(tga, 100, 10, false), 3000);
+        // PNG: three rows of the streaming encoder; BMP and PPM: nothing.
+        assert_eq!(encoder_bytes(Format::Png, 100, 10, true), 1200);
+        for other in [image::ImageFormat::Bmp, image::ImageFormat::Pnm] {
+            assert_eq!(encoder_bytes(Format::Other(other), 100, 10, true), 0);
+        }
+    }
+}

@@ -7,7 +7,7 @@ use std::io::IsTerminal;
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::Duration;
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::{HumanDuration, ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
 
 /// How long work runs before its progress appears: a quick run prints
 /// nothing.
@@ -71,6 +71,15 @@ fn terminal() -> Option<ProgressDrawTarget> {
         .then(ProgressDrawTarget::stderr)
 }
 
+/// The time left, once a row has finished to estimate it from (before,
+/// indicatif's estimate reads "0s").
+fn time_left(state: &ProgressState, out: &mut dyn std::fmt::Write) {
+    let _ = match state.pos() {
+        0 => write!(out, "?"),
+        _ => write!(out, "{}", HumanDuration(state.eta())),
+    };
+}
+
 /// Counts finished rows; safe to advance from worker threads.
 pub struct Progress {
     shown: Option<Delayed>,
@@ -87,10 +96,11 @@ impl Progress {
     fn rows_to(rows: u32, target: Option<ProgressDrawTarget>, quiet: Duration) -> Progress {
         let shown = target.map(|target| {
             let style = ProgressStyle::with_template(
-                "{elapsed_precise} [{bar:40}] {pos}/{len} rows, {eta} left",
+                "{elapsed_precise} [{bar:40}] {pos}/{len} rows, {left} left",
             )
             .unwrap_or_else(|_| ProgressStyle::default_bar())
-            .progress_chars("=> ");
+            .progress_chars("=> ")
+            .with_key("left", time_left);
             let bar =
                 ProgressBar::with_draw_target(Some(u64::from(rows)), ProgressDrawTarget::hidden())
                     .with_style(style);
@@ -201,7 +211,11 @@ mod tests {
             }
             std::thread::sleep(Duration::from_millis(10));
         }
-        assert!(term.text().contains("0/16 rows"), "{:?}", term.text());
+        assert!(
+            term.text().contains("0/16 rows, ? left"),
+            "{:?}",
+            term.text()
+        );
         progress.advance(3);
         progress.finish();
         // Finished: nothing is drawn any more.
