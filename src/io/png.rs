@@ -7,7 +7,8 @@ use std::vec::Vec;
 use crate::render::framebuffer::Framebuffer;
 
 /// Encodes `width x height` packed RGBA8 pixels (see [`crate::pack`]) as a
-/// PNG into `writer`. Fails if `pixels` is shorter than the image.
+/// PNG into `writer`. Fails if `pixels` is shorter than the image. Makes no
+/// copy of the image: its memory is a few rows, whatever the size.
 pub fn encode_png<W: Write>(
     writer: W,
     width: u32,
@@ -21,24 +22,42 @@ pub fn encode_png<W: Write>(
             std::format!("{len} pixels needed, {} given", pixels.len()),
         ))
     })?;
-    let bytes: Vec<u8> = pixels.iter().flat_map(|p| p.to_ne_bytes()).collect();
-    encode_rgba8(writer, width, height, &bytes)
+    encode_rgba8(writer, width, height, pixels.iter().copied())
 }
 
-/// The one PNG encoder: RGBA, 8 bits per channel, `width * height * 4`
-/// bytes in `bytes`.
+/// Bytes of the PNG chunks the encoder writes the image data in (and
+/// buffers before writing each): large enough that the chunks' 12 bytes of
+/// framing cost nothing.
+const CHUNK: usize = 1 << 18;
+
+/// The one PNG encoder: RGBA, 8 bits per channel, the `width * height`
+/// packed pixels from `pixels`. The image data is filtered and compressed
+/// as it streams through, a few rows at a time: the encoder never holds
+/// the image, or its compressed bytes, whole.
 pub(crate) fn encode_rgba8<W: Write>(
     writer: W,
     width: u32,
     height: u32,
-    bytes: &[u8],
+    pixels: impl Iterator<Item = u32>,
 ) -> Result<(), png::EncodingError> {
     let mut encoder = png::Encoder::new(writer, width, height);
     encoder.set_color(png::ColorType::Rgba);
     encoder.set_depth(png::BitDepth::Eight);
     let mut writer = encoder.write_header()?;
-    writer.write_image_data(bytes)?;
-    writer.finish()
+    let mut stream = writer.stream_writer_with_size(CHUNK)?;
+    // The pixels' bytes in batches on the stack: no allocation per image.
+    let mut batch = [0u8; 4096];
+    let mut filled = 0;
+    for pixel in pixels {
+        batch[filled..filled + 4].copy_from_slice(&pixel.to_ne_bytes());
+        filled += 4;
+        if filled == batch.len() {
+            stream.write_all(&batch)?;
+            filled = 0;
+        }
+    }
+    stream.write_all(&batch[..filled])?;
+    stream.finish()
 }
 
 /// Writes `pixels` as a PNG file at `path`.
@@ -89,11 +108,7 @@ pub fn read_png(path: &std::path::Path) -> Result<(u32, u32, Vec<u32>), png::Dec
 impl Framebuffer {
     /// Encodes the image as a PNG into `writer` (feature `png`).
     pub fn encode_png<W: Write>(&self, writer: W) -> Result<(), png::EncodingError> {
-        let bytes: Vec<u8> = self
-            .pixels()
-            .iter()
-            .flat_map(|p| p.load(Ordering::Relaxed).to_ne_bytes())
-            .collect();
-        encode_rgba8(writer, self.width(), self.height(), &bytes)
+        let pixels = self.pixels().iter().map(|p| p.load(Ordering::Relaxed));
+        encode_rgba8(writer, self.width(), self.height(), pixels)
     }
 }

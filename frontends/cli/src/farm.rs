@@ -59,7 +59,7 @@ pub fn task_frames(args: &Args, frames: Option<u32>) -> Result<Option<FrameRange
     let frames = frames.ok_or("--tasks splits an animation: it needs --frames N")?;
     frames_for_task(0, tasks, frames)?; // the task count first, then the index
     let what = format!("the {tasks} tasks");
-    let index = index.resolve("--task-index", tasks, &what, |var| std::env::var(var).ok())?;
+    let index = index.resolve("--task-index", tasks, &what, |var| std::env::var(var))?;
     let run = frames_for_task(index, tasks, frames)?;
     // Frames count from 1.
     Ok(Some(FrameRange {
@@ -118,7 +118,7 @@ pub fn select(
     grid.fits(width, height)?;
     let what = format!("the {grid} grid's tiles");
     let tile = index.resolve("--tile-index", grid.count(), &what, |var| {
-        std::env::var(var).ok()
+        std::env::var(var)
     })?;
     let rect = grid
         .tile(width, height, tile)
@@ -251,7 +251,7 @@ fn run_stitch(args: &StitchArgs) -> Result<(), String> {
     };
     let frame = stitch(&args.parts, args.allow_partial, memory::available_memory())?;
     // Encoded as a render encodes its frame: the same file.
-    let (width, height, pixels) = (frame.width, frame.height, &frame.pixels);
+    let (width, height, pixels) = (frame.width, frame.height, frame.pixels);
     let encode =
         |to: &mut dyn Write| output::write(to, output::Format::Png, width, height, pixels, true);
     match file {

@@ -221,7 +221,16 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
         Subject::Terrain { .. } => None,
     };
     let pixels = u64::from(region.width) * u64::from(region.height);
-    memory::budget(args.backend, bounds, voxels, pixels, args.max_memory).check(args.backend)?;
+    let encoder = match &tile {
+        // A part is PNG with its placement: write_part copies the pixels.
+        Some(_) => u128::from(pixels) * 4,
+        None => {
+            let alpha = options.background == Background::Transparent;
+            output::encoder_bytes(format, region.width, region.height, alpha)
+        }
+    };
+    let frame = (pixels, encoder);
+    memory::budget(args.backend, bounds, voxels, frame, args.max_memory).check(args.backend)?;
     // The first file is a temporary one beside its path from now on, which
     // replaces the path only once complete; on any error it is removed.
     let first_file = if to_stdout {
@@ -240,8 +249,12 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
         tile: tile.as_ref(),
     };
     job.render_all(&cameras, &paths, first_file, &mut notes)?;
-    // Notes only after a success: an error stays the one line on stderr.
-    // Escaped: a path a warning quotes cannot start a line of its own.
+    // The seed, warnings and notes only after a success: an error stays
+    // the one line on stderr. Escaped: a path a warning quotes cannot
+    // start a line of its own.
+    if let Subject::Terrain { seed, random: true } = subject {
+        eprintln!("seed: {seed}");
+    }
     warnings
         .iter()
         .for_each(|w| eprintln!("warning: {}", escape_controls(w)));
@@ -269,14 +282,15 @@ fn create(path: &Path) -> Result<AtomicFile, String> {
 /// `--export-vox`: the terrain as a `.vox` file.
 fn export(args: &Args, path: &Path) -> Result<(), String> {
     let (seed, random) = terrain_seed(args);
-    if random {
-        eprintln!("seed: {seed}");
-    }
     let mut bytes = Vec::new();
     let terrain = VoxelGenerator::new(seed);
     let count = export_vox(&terrain, terrain_box(&terrain, args.size), &mut bytes)?;
     std::fs::write(path, &bytes)
         .map_err(|e| format!("cannot write --export-vox {}: {e}", path.display()))?;
+    // Only now: an error stays the one line on stderr.
+    if random {
+        eprintln!("seed: {seed}");
+    }
     if args.stats {
         eprintln!("voxels: {count}");
         eprintln!("file_bytes: {}", bytes.len());
@@ -303,7 +317,12 @@ impl Job<'_> {
     /// created up front) or else `path` (standard output for `-`), in the
     /// run's format, as a part with `--tiles`; a file replaces its path
     /// only once written whole.
-    fn write(&self, first: Option<AtomicFile>, path: &Path, pixels: &[u32]) -> Result<(), String> {
+    fn write(
+        &self,
+        first: Option<AtomicFile>,
+        path: &Path,
+        pixels: Vec<u32>,
+    ) -> Result<(), String> {
         let region = self.region;
         let alpha = self.options.background == Background::Transparent;
         let failed = |e: String| format!("cannot write --out {}: {e}", path.display());
@@ -317,7 +336,7 @@ impl Job<'_> {
             None => create(path)?,
         };
         match self.tile {
-            Some(tile) => farm::write_tile(&mut file, tile, pixels),
+            Some(tile) => farm::write_tile(&mut file, tile, &pixels),
             None => output::write(
                 &mut file,
                 self.format,
@@ -353,9 +372,6 @@ impl Job<'_> {
                 "the camera starts inside a solid voxel: its rays see only that voxel (move it with --position)"
                     .to_string(),
             );
-        }
-        if let Subject::Terrain { seed, random: true } = self.subject {
-            eprintln!("seed: {seed}");
         }
         let mut first = first;
         let (built, build, totals) = on_threads(args.threads, || {
@@ -394,7 +410,7 @@ impl Job<'_> {
                     }
                 };
                 let started = Instant::now();
-                if let Err(e) = self.write(first.take(), path, &rendered.pixels) {
+                if let Err(e) = self.write(first.take(), path, rendered.pixels) {
                     progress.finish();
                     return Err(e);
                 }

@@ -5,27 +5,32 @@
 use voxtrace::IAabb;
 use voxtrace_cli::{human_bytes, Backend};
 
-/// Bytes per pixel at the peak of a render: the framebuffer (4), the
-/// finished pixels (4) and the encoder's RGBA copy (4).
-const FRAME_BYTES_PER_PIXEL: u128 = 12;
+/// Bytes per pixel of the frame: the framebuffer, which becomes the
+/// finished pixels in place and which the encoders read (or convert to RGB)
+/// in place. What an encoder allocates besides comes on top (see
+/// [`output::encoder_bytes`](crate::output::encoder_bytes)).
+const FRAME_BYTES_PER_PIXEL: u128 = 4;
 
 /// What the run will need and what it may use, for one refusal message.
 pub struct Budget {
     /// Bytes the storage needs: exact for dense, an estimate for the octree.
     pub storage: u128,
-    /// Bytes of the frame at its peak.
+    /// Bytes of the frame at its peak: its pixels and the encoder's own.
     pub frame: u128,
     /// Bytes available, and where the figure comes from.
     pub available: (u128, &'static str),
+    /// Whether the scene is a `.vox` model, whose size no flag changes.
+    pub model: bool,
 }
 
-/// The budget of a render of `pixels` pixels with `backend` over `bounds`;
-/// `solid_voxels` is the count when the source knows it (a `.vox` model).
+/// The budget of a render of `pixels` pixels with `backend` over `bounds`,
+/// whose encoder allocates `encoder` bytes besides; `solid_voxels` is the
+/// count when the source knows it (a `.vox` model, `None` for the terrain).
 pub fn budget(
     backend: Backend,
     bounds: IAabb,
     solid_voxels: Option<u64>,
-    pixels: u64,
+    (pixels, encoder): (u64, u128),
     max_memory: Option<u64>,
 ) -> Budget {
     let storage = match backend {
@@ -38,34 +43,55 @@ pub fn budget(
     };
     Budget {
         storage,
-        frame: u128::from(pixels) * FRAME_BYTES_PER_PIXEL,
+        frame: u128::from(pixels) * FRAME_BYTES_PER_PIXEL + encoder,
         available,
+        model: solid_voxels.is_some(),
     }
 }
 
 impl Budget {
     /// `Ok` when storage and frame together fit; otherwise the one-line
-    /// refusal, naming the estimate and the limit.
+    /// refusal, naming the estimate and the limit, and the remedies that
+    /// apply to this scene.
     pub fn check(&self, backend: Backend) -> Result<(), String> {
         let (available, from) = self.available;
-        if self.storage + self.frame <= available {
+        if self.storage.saturating_add(self.frame) <= available {
             return Ok(());
         }
         let what = match backend {
-            Backend::Dense => "the dense array for this scene needs".to_string(),
-            Backend::Octree => "the octree for this scene needs about".to_string(),
-        };
-        let hint = match backend {
-            Backend::Dense => "; try --backend octree, a smaller --size or --max-memory",
-            Backend::Octree => "; try a smaller --size, or --max-memory to override",
+            Backend::Dense => "the dense array for this scene needs",
+            Backend::Octree => "the octree for this scene needs about",
         };
         Err(format!(
             "{what} {}, estimated before building, and the frame {}: more than \
-             the {} available ({from}){hint}",
+             the {} available ({from}); try {}",
             human_bytes(self.storage),
             human_bytes(self.frame),
-            human_bytes(available)
+            human_bytes(available),
+            self.remedies(backend)
         ))
+    }
+
+    /// What would make the run fit: for the larger of the two shares, the
+    /// flags that shrink it (a `.vox` model's size is its own, `--size`
+    /// only sizes the terrain), then `--max-memory`.
+    fn remedies(&self, backend: Backend) -> String {
+        let mut remedies = Vec::new();
+        if self.frame > self.storage {
+            remedies.push("a smaller frame (--width and --height, or --tiles)");
+        } else {
+            if backend == Backend::Dense {
+                remedies.push("--backend octree");
+            }
+            if !self.model {
+                remedies.push("a smaller --size");
+            }
+        }
+        let last = "--max-memory to override";
+        match remedies.as_slice() {
+            [] => last.to_string(),
+            _ => format!("{}, or {last}", remedies.join(", ")),
+        }
     }
 }
 
@@ -161,11 +187,13 @@ mod tests {
 
     #[test]
     fn a_refusal_names_the_estimate_and_the_limit() {
-        // 20^3 voxels and 100 pixels of 12 bytes: 9200 bytes in all.
-        let b = budget(Backend::Dense, IAabb::centered(10), None, 100, Some(9200));
+        // 20^3 voxels, 100 pixels of 4 bytes and 800 bytes of the
+        // encoder's: 9200 bytes in all.
+        let frame = (100, 800);
+        let b = budget(Backend::Dense, IAabb::centered(10), None, frame, Some(9200));
         assert_eq!((b.storage, b.frame), (8000, 1200));
         assert_eq!(b.check(Backend::Dense), Ok(()));
-        let b = budget(Backend::Dense, IAabb::centered(10), None, 100, Some(9199));
+        let b = budget(Backend::Dense, IAabb::centered(10), None, frame, Some(9199));
         let refusal = b.check(Backend::Dense).unwrap_err();
         assert!(
             refusal.contains("7.8 KiB (8000 bytes)")
@@ -179,7 +207,7 @@ mod tests {
             Backend::Dense,
             IAabb::centered(4096),
             None,
-            16,
+            (16, 0),
             Some(1 << 30),
         );
         let refusal = b.check(Backend::Dense).unwrap_err();
@@ -188,5 +216,42 @@ mod tests {
                 && refusal.contains("1.0 GiB (1073741824 bytes) available"),
             "{refusal}"
         );
+    }
+
+    #[test]
+    fn a_refusal_suggests_only_what_applies_to_the_scene() {
+        let refuse = |backend, model: Option<u64>, frame| {
+            let b = budget(backend, IAabb::centered(100), model, frame, Some(1000));
+            b.check(backend).unwrap_err()
+        };
+        let small = (1, 0);
+        let terrain = refuse(Backend::Dense, None, small);
+        assert!(
+            terrain
+                .ends_with("try --backend octree, a smaller --size, or --max-memory to override"),
+            "{terrain}"
+        );
+        let terrain = refuse(Backend::Octree, None, small);
+        assert!(
+            terrain.ends_with("try a smaller --size, or --max-memory to override"),
+            "{terrain}"
+        );
+        // A .vox model's size is its own: --size does nothing to it.
+        let model = refuse(Backend::Dense, Some(1 << 20), small);
+        assert!(
+            model.ends_with("try --backend octree, or --max-memory to override"),
+            "{model}"
+        );
+        let model = refuse(Backend::Octree, Some(1 << 20), small);
+        assert!(model.ends_with("try --max-memory to override"), "{model}");
+        // A frame larger than the storage: a smaller frame, for either.
+        for voxels in [None, Some(1)] {
+            let big_frame = refuse(Backend::Octree, voxels, (1 << 30, 0));
+            assert!(
+                big_frame.ends_with("try a smaller frame (--width and --height, or --tiles), or --max-memory to override")
+                    && !big_frame.contains("--size"),
+                "{big_frame}"
+            );
+        }
     }
 }

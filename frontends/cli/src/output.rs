@@ -159,49 +159,138 @@ pub fn has_alpha(format: Format) -> bool {
     }
 }
 
+/// Bytes an encoder allocates beyond the pixels while writing a
+/// `width x height` image in `format`, with `alpha` as [`write`] takes it:
+/// for [`crate::memory`]'s estimate. PNG, BMP and PPM stream from the
+/// pixels (the PNG encoder and the BMP writer hold a few rows); the
+/// image crate's TGA encoder copies the image whole first, 4 or 3 bytes a
+/// pixel.
+#[cfg_attr(not(feature = "image"), allow(unused_variables))]
+pub fn encoder_bytes(format: Format, width: u32, height: u32, alpha: bool) -> u128 {
+    // The PNG encoder's rows: previous, current and filtered.
+    let rows = 3 * 4 * u128::from(width);
+    match format {
+        Format::Png => rows,
+        #[cfg(feature = "image")]
+        Format::Other(image::ImageFormat::Tga) => {
+            let channels = if alpha { 4 } else { 3 };
+            channels * u128::from(width) * u128::from(height)
+        }
+        #[cfg(feature = "image")]
+        Format::Other(_) => 0,
+    }
+}
+
 /// Writes `width x height` packed pixels to `out` in `format`; `alpha`
 /// keeps their alpha channel where the format has one (else RGB, as
 /// opaque renders have always been written). PNG always keeps the
 /// pixels' alpha, 255 in opaque renders.
-#[cfg_attr(not(feature = "image"), allow(unused_variables))]
+///
+/// Takes the pixels: an RGB file is converted in their own memory, so
+/// that writing a frame allocates no second copy of it (see
+/// [`encoder_bytes`] for what the encoders allocate).
+#[cfg_attr(not(feature = "image"), allow(unused_variables, unused_mut))]
 pub fn write(
     out: impl Write,
     format: Format,
     width: u32,
     height: u32,
-    pixels: &[u32],
+    mut pixels: Vec<u32>,
     alpha: bool,
 ) -> Result<(), String> {
+    let len = width as usize * height as usize;
+    if pixels.len() < len {
+        return Err("the image has fewer pixels than its size".into());
+    }
+    pixels.truncate(len);
     let mut out = BufWriter::new(out);
     match format {
         Format::Png => {
-            voxtrace::encode_png(&mut out, width, height, pixels).map_err(|e| e.to_string())?;
+            voxtrace::encode_png(&mut out, width, height, &pixels).map_err(|e| e.to_string())?;
         }
         #[cfg(feature = "image")]
         Format::Other(format) => {
-            let rgba = voxtrace::to_rgba_image(width, height, pixels)
-                .ok_or("the image has fewer pixels than its size")?;
-            if alpha && has_alpha(Format::Other(format)) {
-                let mut bytes = std::io::Cursor::new(Vec::new());
-                rgba.write_to(&mut bytes, format)
-                    .map_err(|e| e.to_string())?;
-                out.write_all(bytes.get_ref()).map_err(|e| e.to_string())?;
+            use image::ExtendedColorType;
+            let (bytes, color) = if alpha && has_alpha(Format::Other(format)) {
+                // Packed pixels are RGBA bytes in memory (see `pack`).
+                (bytemuck::cast_slice(&pixels), ExtendedColorType::Rgba8)
             } else {
                 // Opaque renders: RGB is what every offered format takes.
-                let rgb = image::DynamicImage::ImageRgba8(rgba).to_rgb8();
-                if format == image::ImageFormat::Pnm {
-                    use image::codecs::pnm::{PnmEncoder, PnmSubtype, SampleEncoding};
-                    let pixmap = PnmSubtype::Pixmap(SampleEncoding::Binary);
-                    rgb.write_with_encoder(PnmEncoder::new(&mut out).with_subtype(pixmap))
-                        .map_err(|e| e.to_string())?;
-                } else {
-                    let mut bytes = std::io::Cursor::new(Vec::new());
-                    rgb.write_to(&mut bytes, format)
-                        .map_err(|e| e.to_string())?;
-                    out.write_all(bytes.get_ref()).map_err(|e| e.to_string())?;
-                }
-            }
+                (rgb_in_place(&mut pixels), ExtendedColorType::Rgb8)
+            };
+            encode_other(&mut out, format, bytes, width, height, color)?;
         }
     }
     out.flush().map_err(|e| e.to_string())
+}
+
+/// Packs RGBA pixels to RGB bytes over their own memory (each pixel's 3
+/// bytes move down to or before where its 4 were); returns those bytes.
+#[cfg(feature = "image")]
+fn rgb_in_place(pixels: &mut [u32]) -> &[u8] {
+    let len = pixels.len();
+    let bytes: &mut [u8] = bytemuck::cast_slice_mut(pixels);
+    for i in 1..len {
+        bytes.copy_within(4 * i..4 * i + 3, 3 * i);
+    }
+    &bytes[..3 * len]
+}
+
+/// Encodes `bytes` (`color`) with the image crate's encoder for `format`,
+/// straight into `out`: no conversion of the image crate's own (its
+/// `DynamicImage` conversions copy the image and panic when that
+/// allocation fails), no buffer of the encoded file.
+#[cfg(feature = "image")]
+fn encode_other(
+    out: &mut impl Write,
+    format: image::ImageFormat,
+    bytes: &[u8],
+    width: u32,
+    height: u32,
+    color: image::ExtendedColorType,
+) -> Result<(), String> {
+    use image::codecs::{bmp::BmpEncoder, pnm, tga::TgaEncoder};
+    use image::{ImageEncoder, ImageFormat};
+    match format {
+        ImageFormat::Bmp => BmpEncoder::new(out).write_image(bytes, width, height, color),
+        ImageFormat::Tga => TgaEncoder::new(out).write_image(bytes, width, height, color),
+        ImageFormat::Pnm => {
+            let pixmap = pnm::PnmSubtype::Pixmap(pnm::SampleEncoding::Binary);
+            pnm::PnmEncoder::new(out)
+                .with_subtype(pixmap)
+                .write_image(bytes, width, height, color)
+        }
+        other => return Err(format!("no encoder for {other:?} in this build")),
+    }
+    .map_err(|e| e.to_string())
+}
+
+#[cfg(all(test, feature = "image"))]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rgb_in_place_keeps_each_pixels_first_three_bytes_in_order() {
+        let pixels: Vec<u32> = (0..7u8)
+            .map(|i| u32::from_ne_bytes([i, 10 + i, 20 + i, 30 + i]))
+            .collect();
+        let expected: Vec<u8> = pixels
+            .iter()
+            .flat_map(|p| p.to_ne_bytes()[..3].to_vec())
+            .collect();
+        let mut converted = pixels.clone();
+        assert_eq!(rgb_in_place(&mut converted), expected.as_slice());
+    }
+
+    #[test]
+    fn only_the_tga_encoder_copies_the_image() {
+        let tga = Format::Other(image::ImageFormat::Tga);
+        assert_eq!(encoder_bytes(tga, 100, 10, true), 4000);
+        assert_eq!(encoder_bytes(tga, 100, 10, false), 3000);
+        // PNG: three rows of the streaming encoder; BMP and PPM: nothing.
+        assert_eq!(encoder_bytes(Format::Png, 100, 10, true), 1200);
+        for other in [image::ImageFormat::Bmp, image::ImageFormat::Pnm] {
+            assert_eq!(encoder_bytes(Format::Other(other), 100, 10, true), 0);
+        }
+    }
 }

@@ -31,11 +31,11 @@ pub struct Stitched {
     pub grid: Grid,
 }
 
-/// Bytes per pixel of the frame at a stitch's peak: the frame (4), the
-/// encoder's RGBA copy of it (4) and its compressed stream, which for
-/// pixels that do not compress (parts are anyone's files) is the size of
-/// the copy in a vector grown by doubling (up to 8).
-pub const FRAME_BYTES_PER_PIXEL: u128 = 16;
+/// Bytes per pixel of the frame at a stitch's peak, while the parts are
+/// pasted: the parts' pixels, read whole (4, the frame's worth when no
+/// tile is missing), and the frame (4). The PNG encoder then streams the
+/// frame a few rows at a time.
+pub const FRAME_BYTES_PER_PIXEL: u128 = 8;
 
 /// Reads the part files at `paths` and assembles their frame; `available`
 /// is the memory the stitch may still use, and where that figure comes
@@ -206,7 +206,7 @@ fn fits(width: u32, height: u32, available: (u128, &str)) -> Result<(), String> 
     let (bytes, from) = available;
     if needed > bytes {
         return Err(format!(
-            "the stitched {width}x{height} frame needs {} with its encoding: more than the {} available ({from})",
+            "the stitched {width}x{height} frame needs {} with the parts: more than the {} available ({from})",
             human_bytes(needed),
             human_bytes(bytes)
         ));

@@ -9,6 +9,7 @@
 //! `[i * n / parts, (i + 1) * n / parts)`. The runs cover every item once
 //! and differ in length by at most one.
 
+use std::env::VarError;
 use std::ops::Range;
 
 use voxtrace::Rect;
@@ -158,21 +159,26 @@ impl TaskIndex {
     ///
     /// # Errors
     /// A message naming the flag, the bad value and the valid range: the
-    /// variable is unset or not a number, or the index is out of range.
+    /// variable is unset, not UTF-8 or not a number, or the index is out
+    /// of range.
     pub fn resolve(
         &self,
         flag: &str,
         count: u32,
         what: &str,
-        lookup: impl Fn(&str) -> Option<String>,
+        lookup: impl Fn(&str) -> Result<String, VarError>,
     ) -> Result<u32, String> {
         let range = format!("{what} are 0 to {}", count.saturating_sub(1));
         let (index, given) = match self {
             TaskIndex::Number(n) => (*n, format!("{flag} {n}")),
             TaskIndex::Env(var) => {
                 let given = format!("{flag} env:{var}");
-                let value =
-                    lookup(var).ok_or_else(|| format!("{given}: {var} is not set ({range})"))?;
+                let value = lookup(var).map_err(|e| match e {
+                    VarError::NotPresent => format!("{given}: {var} is not set ({range})"),
+                    VarError::NotUnicode(_) => {
+                        format!("{given}: {var} is not valid UTF-8 ({range})")
+                    }
+                })?;
                 let n = value
                     .trim()
                     .parse::<u32>()
@@ -222,6 +228,8 @@ pub fn tile_name(pattern: &str, tile: u32, count: u32) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::ffi::OsStr;
+    use std::os::unix::ffi::OsStrExt;
 
     #[test]
     fn grids_parse_and_refuse_nonsense() {
@@ -274,9 +282,10 @@ mod tests {
     #[test]
     fn indexes_come_from_numbers_or_the_environment_and_name_the_range() {
         let env = |var: &str| match var {
-            "TASK" => Some("5".to_string()),
-            "JUNK" => Some("five".to_string()),
-            _ => None,
+            "TASK" => Ok("5".to_string()),
+            "JUNK" => Ok("five".to_string()),
+            "BYTES" => Err(VarError::NotUnicode(OsStr::from_bytes(b"\xff").into())),
+            _ => Err(VarError::NotPresent),
         };
         let resolve = |text: &str| {
             TaskIndex::parse(text)?.resolve("--tile-index", 16, "the 4x4 grid's tiles", env)
@@ -295,8 +304,15 @@ mod tests {
             junk.contains("'five'") && junk.contains("0 to 15"),
             "{junk}"
         );
+        // Bytes that are not text are not "unset".
+        let bytes = resolve("env:BYTES").unwrap_err();
+        assert!(
+            bytes.contains("BYTES is not valid UTF-8") && bytes.contains("0 to 15"),
+            "{bytes}"
+        );
         assert!(resolve("env:").is_err() && resolve("-1").is_err());
-        let big = TaskIndex::Number(20).resolve("--tile-index", 16, "tiles", |_| None);
+        let big = TaskIndex::Number(20)
+            .resolve("--tile-index", 16, "tiles", |_| Err(VarError::NotPresent));
         assert!(big.unwrap_err().contains("out of range"));
     }
 

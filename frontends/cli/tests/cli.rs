@@ -263,6 +263,60 @@ fn bad_input_exits_2_with_one_line_naming_the_value() {
     }
 }
 
+/// The one line of a run that must fail with exit 2.
+fn refusal(result: &std::process::Output) -> String {
+    let stderr = String::from_utf8_lossy(&result.stderr).into_owned();
+    assert_eq!(result.status.code(), Some(2), "{stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "one line: {stderr}");
+    stderr
+}
+
+#[test]
+fn errors_say_what_applies_and_print_nothing_before() {
+    use std::ffi::OsStr;
+    use std::os::unix::ffi::OsStrExt;
+    // A random seed is printed after a success only: an error is alone.
+    let unwritable = "/nonexistent-dir/terrain.vox";
+    let stderr = refusal(&voxtrace(&["--export-vox", unwritable, "--size", "8"]));
+    assert!(stderr.contains(unwritable), "{stderr}");
+    // An index variable holding bytes that are not text is not "unset".
+    let out = scratch("tile-%t.png");
+    let result = std::process::Command::new(env!("CARGO_BIN_EXE_voxtrace"))
+        .args(["--tiles", "2x2", "--tile-index", "env:VOXTRACE_TEST_INDEX"])
+        .args(["--seed", "1", "--width", "16", "--height", "9", "--out"])
+        .arg(&out)
+        .env("VOXTRACE_TEST_INDEX", OsStr::from_bytes(b"\xff1"))
+        .output()
+        .unwrap();
+    let stderr = refusal(&result);
+    assert!(
+        stderr.contains("VOXTRACE_TEST_INDEX is not valid UTF-8") && stderr.contains("0 to 3"),
+        "{stderr}"
+    );
+    // A .vox model's size is its own: the refusal does not suggest --size.
+    let vox = write_vox("refused.vox");
+    let out = scratch("refused.png");
+    for (frame, remedy) in [("16", "--max-memory"), ("4000", "a smaller frame")] {
+        let result = voxtrace(&[
+            "--vox",
+            vox.to_str().unwrap(),
+            "--max-memory",
+            "1K",
+            "--width",
+            frame,
+            "--height",
+            frame,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let stderr = refusal(&result);
+        assert!(
+            stderr.contains(remedy) && !stderr.contains("--size"),
+            "{frame}: {stderr}"
+        );
+    }
+}
+
 /// `key: value` lines of `--stats` as numbers.
 fn stat(stderr: &str, key: &str) -> u64 {
     stderr

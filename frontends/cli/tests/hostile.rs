@@ -6,14 +6,15 @@
 //! never a signal, an abort, a panic or a timeout.
 //!
 //! The fast part runs in `cargo test`; `every_truncation_under_limits`
-//! (every offset of two files, a few thousand runs) is `#[ignore]`d and
-//! run by `.ci/run` with the optimized binary.
+//! (every offset of two files, a few thousand runs) and
+//! `big_frames_under_limits` (seconds of work per run) are `#[ignore]`d
+//! and run by `.ci/run` with the optimized binary.
 
 mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::limits::{check_contract, run_limited, scratch, tools_present};
+use common::limits::{check_contract, run_limited, run_limited_within, scratch, tools_present};
 use common::vox_bytes::{hostile_files, small_scene};
 
 /// A real MagicaVoxel file by another author (see its SOURCES.md), when the
@@ -318,6 +319,59 @@ fn every_truncation_under_limits() {
     }
     let (count, failures) = run_all(vox_cases(cuts, &out));
     println!("{count} truncated inputs");
+    assert!(
+        failures.is_empty(),
+        "{} of {count}:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// Frames of 81 million pixels in each writer's way (PNG, RGBA and RGB
+/// BMP, TGA with its own copy, PPM), and an octree the user let past the
+/// estimate (`--max-memory 1T`, with a random seed): each fits in the
+/// 1 GiB or fails with the one line; never an abort or a panic. Seconds
+/// of work each (a minute's limit catches hangs): `.ci/run` runs it
+/// optimized.
+#[test]
+#[ignore = "seconds per run: .ci/run runs it optimized"]
+fn big_frames_under_limits() {
+    if !tools_present() {
+        println!("skipped: prlimit or timeout is absent");
+        return;
+    }
+    let dir = scratch("hostile-big");
+    let mut cases: Vec<(String, Vec<String>)> = Vec::new();
+    let formats = [
+        ("png", "transparent"),
+        ("bmp", "transparent"),
+        ("bmp", "sky"),
+        ("tga", "transparent"),
+        ("tga", "sky"),
+        ("ppm", "sky"),
+    ];
+    for (ext, background) in formats {
+        let out = dir.join(format!("big.{ext}"));
+        // --size 1: the rays miss the scene, the time goes to the frame.
+        let args = "--flat --width 9000 --height 9000 --size 1 --seed 1 --background";
+        let mut all: Vec<String> = args.split(' ').map(String::from).collect();
+        all.extend([background.into(), "--out".into(), out.display().to_string()]);
+        cases.push((format!("9000x9000 {background} .{ext}"), all));
+    }
+    let octree = "--max-memory 1T --size 100000 --width 16 --height 9";
+    let mut all: Vec<String> = octree.split(' ').map(String::from).collect();
+    all.extend(["--out".into(), dir.join("octree.png").display().to_string()]);
+    cases.push((octree.into(), all));
+    let count = cases.len();
+    let failures: Vec<String> = cases
+        .into_iter()
+        .filter_map(|(name, args)| {
+            let ended = run_limited_within(&args, std::time::Duration::from_secs(60));
+            println!("{name}: exit {:?} in {:.2?}", ended.code, ended.elapsed);
+            let _ = std::fs::remove_dir_all(&dir).and_then(|()| std::fs::create_dir(&dir));
+            check_contract(&name, &ended).err()
+        })
+        .collect();
     assert!(
         failures.is_empty(),
         "{} of {count}:\n{}",

@@ -235,14 +235,14 @@ fn a_frame_that_does_not_fit_in_memory_is_refused_before_it_is_allocated() {
         .iter()
         .map(|(n, p)| (n.as_path(), p.clone()))
         .collect();
-    // 64 x 36 pixels of 16 bytes each (frame, encoder copy, stream).
-    let fits = assemble(&named, false, (36_864, "a test's limit"));
+    // 64 x 36 pixels of 8 bytes each (the parts and the frame).
+    let fits = assemble(&named, false, (18_432, "a test's limit"));
     assert_eq!(fits.unwrap().pixels.len(), 64 * 36);
-    let err = assemble(&named, false, (36_863, "a test's limit")).unwrap_err();
+    let err = assemble(&named, false, (18_431, "a test's limit")).unwrap_err();
     assert_eq!(
         err,
-        "the stitched 64x36 frame needs 36 KiB (36864 bytes) with its encoding: \
-         more than the 36 KiB (36863 bytes) available (a test's limit)"
+        "the stitched 64x36 frame needs 18 KiB (18432 bytes) with the parts: \
+         more than the 18 KiB (18431 bytes) available (a test's limit)"
     );
 }
 

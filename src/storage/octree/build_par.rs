@@ -6,7 +6,7 @@ use rayon::prelude::*;
 use std::vec::Vec;
 
 use crate::error::Error;
-use crate::fallible::try_grow;
+use crate::fallible::{try_grow, try_vec};
 use crate::geom::IAabb;
 use crate::storage::octree::build::{
     octants, push_vec, root_size, shortcut, Builder, Cube, VecSink,
@@ -38,14 +38,14 @@ impl OctreeScene<Vec<Node>, Vec<u8>> {
         let size = root_size(&bounds);
         let mut tasks = Vec::new();
         collect_tasks(source, &bounds, bounds.min, size, &mut tasks)?;
-        let parts: Vec<Result<Part, Error>> = tasks
-            .par_iter()
-            .map(|&corner| {
-                let mut builder = Builder::new(source, bounds, VecSink::default());
-                let root = builder.node(corner, size.min(TASK))?;
-                Ok((corner, root, builder.sink))
-            })
-            .collect();
+        // One slot per task, reserved fallibly: rayon's `collect` would
+        // grow the vector with an abort when memory runs out.
+        let mut parts: Vec<Result<Part, Error>> = try_vec(tasks.len())?;
+        parts.par_extend(tasks.par_iter().map(|&corner| {
+            let mut builder = Builder::new(source, bounds, VecSink::default());
+            let root = builder.node(corner, size.min(TASK))?;
+            Ok((corner, root, builder.sink))
+        }));
         let mut parts = parts.into_iter();
         let mut builder = Builder::new(source, bounds, VecSink::default());
         let root = assemble(&mut builder, &mut parts, bounds.min, size)?.unwrap_or(Node::EMPTY);

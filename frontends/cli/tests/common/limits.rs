@@ -45,9 +45,15 @@ pub fn tools_present() -> bool {
 /// Runs the binary with `args` under `timeout -s KILL` and `prlimit --as`.
 /// A run killed for time shows as code 137 (timeout's report of KILL).
 pub fn run_limited(args: &[String]) -> Ended {
+    run_limited_within(args, time_limit())
+}
+
+/// [`run_limited`] with its own time limit, for runs that are seconds of
+/// honest work (frames of tens of millions of pixels).
+pub fn run_limited_within(args: &[String], limit: Duration) -> Ended {
     let started = Instant::now();
     let output = Command::new("timeout")
-        .args(["-s", "KILL", &format!("{}", time_limit().as_secs())])
+        .args(["-s", "KILL", &format!("{}", limit.as_secs())])
         .args(["prlimit", &format!("--as={ADDRESS_SPACE}"), "--"])
         .arg(env!("CARGO_BIN_EXE_voxtrace"))
         .args(args)
