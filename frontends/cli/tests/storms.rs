@@ -8,6 +8,9 @@
 //! time, not wall time: on a shared 2-core machine the wall clock measures
 //! the neighbours (both are printed).
 //!
+//! Run optimized: `cargo test --release -p voxtrace-cli --test storms --
+//! --include-ignored`.
+//!
 //! This binary holds this one test alone: the peak resident set it reads
 //! (`getrusage(RUSAGE_CHILDREN)`) is the largest of its own children only.
 
@@ -51,6 +54,7 @@ enum Outcome {
 
 #[cfg(unix)]
 #[test]
+#[ignore = "builds of 131,044 instances, minutes unoptimized: .ci/run runs it optimized"]
 fn instance_storms_render_or_are_refused_quickly_in_little_memory() {
     let dir = scratch("storms");
     let out = dir.join("out.png");
