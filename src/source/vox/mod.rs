@@ -10,7 +10,7 @@ use std::vec::Vec;
 
 use glam::{IVec3, U8Vec3};
 
-use crate::geom::{IAabb, MAX_COORD};
+use crate::geom::IAabb;
 use crate::material::{MaterialKind, Materials};
 use crate::source::vox::index::ChunkIndex;
 use crate::source::vox::rcam::{Cameras, VoxCamera};
@@ -30,14 +30,6 @@ use crate::voxel::{fill_by_position, holds, Palette, Region, VoxelSource};
 const CHUNK_LOG: i32 = 3;
 const CHUNK: i32 = 1 << CHUNK_LOG;
 const CHUNK_VOXELS: usize = (CHUNK * CHUNK * CHUNK) as usize;
-
-/// The most chunks a scene may fill: 2^17, 64 MiB of voxels (16 dense
-/// 256^3 models). Scattered voxels can each open a chunk of their own,
-/// and the octree then builds a tile per chunk: at this limit an instance
-/// storm of single voxels builds in about a second and 110 MB (measured;
-/// twice as many took 3.7 s of CPU and 217 MB). The voxel limit alone
-/// would allow far more.
-const MAX_CHUNKS: usize = 1 << 17;
 
 /// A MagicaVoxel scene: every model of the file where MagicaVoxel shows it,
 /// in voxtrace's axes (y up; MagicaVoxel's z becomes y).
@@ -71,56 +63,6 @@ pub struct VoxModel {
 fn in_chunk(pos: IVec3) -> usize {
     let l = pos & (CHUNK - 1);
     (l.x | l.y << CHUNK_LOG | l.z << (2 * CHUNK_LOG)) as usize
-}
-
-/// The codes of the chunks the voxels at `positions` fill, sorted and
-/// distinct, counted before any chunk is allocated: at most [`MAX_CHUNKS`],
-/// in at most `2 * MAX_CHUNKS` codes of memory (2 MiB); `total` is how
-/// many positions there are.
-fn chunk_codes(positions: impl Iterator<Item = IVec3>, total: u64) -> Result<Vec<u64>, VoxError> {
-    let too_many = || {
-        VoxError::TooLarge(format!(
-            "its voxels fill more than {MAX_CHUNKS} chunks of 8^3 ({} bytes)",
-            MAX_CHUNKS * CHUNK_VOXELS
-        ))
-    };
-    // Sorted and deduplicated whenever full: linear memory, n log n time.
-    let compact_at = 2 * MAX_CHUNKS;
-    let mut codes: Vec<u64> = Vec::new();
-    let room = usize::try_from(total).map_or(compact_at, |t| t.min(compact_at));
-    codes
-        .try_reserve_exact(room)
-        .map_err(|_| VoxError::TooLarge("its chunk index cannot be allocated".into()))?;
-    let compact = |codes: &mut Vec<u64>| {
-        codes.sort_unstable();
-        codes.dedup();
-    };
-    let mut last = None;
-    for pos in positions {
-        if pos.abs().max_element() >= MAX_COORD {
-            return Err(VoxError::TooLarge(format!(
-                "a voxel lands at {pos}, beyond +-{MAX_COORD}"
-            )));
-        }
-        let key = pos >> CHUNK_LOG;
-        if last == Some(key) {
-            continue;
-        }
-        last = Some(key);
-        if codes.len() == compact_at {
-            compact(&mut codes);
-            if codes.len() > MAX_CHUNKS {
-                return Err(too_many());
-            }
-        }
-        // In range: |pos| < MAX_COORD.
-        codes.extend(index::code(key));
-    }
-    compact(&mut codes);
-    if codes.len() > MAX_CHUNKS {
-        return Err(too_many());
-    }
-    Ok(codes)
 }
 
 impl VoxModel {
@@ -181,7 +123,7 @@ impl VoxModel {
                 .map(move |(p, v)| (world(p, v), v.i + 1))
         };
         // Count the chunks first (8 bytes each), then allocate them once.
-        let index = ChunkIndex::new(chunk_codes(voxels().map(|(pos, _)| pos), total)?);
+        let index = ChunkIndex::count(voxels().map(|(pos, _)| pos), total)?;
         let mut chunks = Vec::new();
         chunks
             .try_reserve_exact(index.len())
@@ -209,7 +151,7 @@ impl VoxModel {
             let slot = match last {
                 Some((k, slot)) if k == key => slot,
                 _ => {
-                    // Every key was indexed by `chunk_codes`.
+                    // Every key was indexed by `ChunkIndex::count`.
                     let Some(slot) = model.index.slot(key) else {
                         continue;
                     };
