@@ -84,7 +84,10 @@ fn instance_storms_render_or_are_refused_quickly_in_little_memory() {
         let _ = std::fs::remove_file(&out);
         let (_, cpu_before) = children_usage();
         let started = Instant::now();
-        let result = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
+        // Killed after a minute: a storm that hangs fails, not the suite.
+        let result = Command::new("timeout")
+            .args(["-s", "KILL", "60"])
+            .arg(env!("CARGO_BIN_EXE_voxtrace"))
             .arg("--vox")
             .arg(&path)
             .args(["--width", "16", "--height", "9", "--out"])
