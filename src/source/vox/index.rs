@@ -14,7 +14,13 @@ use glam::{IVec3, UVec3};
 
 use crate::geom::MAX_COORD;
 use crate::source::vox::scene_graph::VoxError;
-use crate::source::vox::{CHUNK_LOG, CHUNK_VOXELS};
+
+/// Chunk side, as a shift: 8 voxels.
+pub(crate) const CHUNK_LOG: i32 = 3;
+/// Chunk side: 8 voxels.
+pub(crate) const CHUNK: i32 = 1 << CHUNK_LOG;
+/// Voxels of a chunk: 512, a byte each.
+pub(crate) const CHUNK_VOXELS: usize = (CHUNK * CHUNK * CHUNK) as usize;
 
 /// The most chunks a scene may fill: 2^17, 64 MiB of voxels (16 dense
 /// 256^3 models). Scattered voxels can each open a chunk of their own,

@@ -12,11 +12,13 @@ use glam::{IVec3, U8Vec3};
 
 use crate::geom::IAabb;
 use crate::material::{MaterialKind, Materials};
-use crate::source::vox::index::ChunkIndex;
-use crate::source::vox::rcam::{Cameras, VoxCamera};
+use crate::source::vox::camera::VoxCamera;
+use crate::source::vox::index::{ChunkIndex, CHUNK, CHUNK_LOG, CHUNK_VOXELS};
+use crate::source::vox::rcam::Cameras;
 use crate::source::vox::robj::VoxSettings;
 use crate::source::vox::scene_graph::{placements, Placement, VoxError, MAX_PLACED};
 
+pub(crate) mod camera;
 pub(crate) mod chunks;
 pub(crate) mod index;
 pub(crate) mod matl;
@@ -25,11 +27,6 @@ pub(crate) mod robj;
 pub(crate) mod scene_graph;
 pub(crate) mod warnings;
 use crate::voxel::{fill_by_position, holds, Palette, Region, VoxelSource};
-
-/// Chunk side, as a shift: 8 voxels.
-const CHUNK_LOG: i32 = 3;
-const CHUNK: i32 = 1 << CHUNK_LOG;
-const CHUNK_VOXELS: usize = (CHUNK * CHUNK * CHUNK) as usize;
 
 /// A MagicaVoxel scene: every model of the file where MagicaVoxel shows it,
 /// in voxtrace's axes (y up; MagicaVoxel's z becomes y).
