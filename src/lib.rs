@@ -99,7 +99,7 @@ pub use source::noise::{Perlin, SplitMix64};
 pub use source::terrain::{VoxelGenerator, GRASS, HEIGHT, MOUNTAIN, ROUGHNESS, SCALE, SNOW, WATER};
 #[cfg(feature = "vox")]
 pub use source::vox::{
-    rcam::{VoxCamera, VoxCameraMode},
+    camera::{VoxCamera, VoxCameraMode},
     robj::{VoxSettings, VoxSun},
     scene_graph::VoxError,
     VoxModel,

@@ -120,6 +120,20 @@ fn bad_matl_values_warn_naming_the_material_and_key() {
     assert_eq!(model.materials().get(3).kind(), MaterialKind::Diffuse);
 }
 
+#[test]
+fn many_bad_matl_values_list_16_and_count_the_rest() {
+    // 200 MATL chunks for the 4 used entries (a file may repeat an id),
+    // each with one bad value: one line each would be 200 lines.
+    let bad: Vec<VoxMaterial> = (0..200)
+        .map(|i| matl(1 + i % 4, &[("_type", "_metal"), ("_metal", "shiny")]))
+        .collect();
+    let model = VoxModel::from_bytes(&file(bad)).unwrap();
+    let w = model.warnings();
+    assert_eq!(w.len(), 17, "{w:?}");
+    assert!(w[..16].iter().all(|line| line.contains("'shiny'")), "{w:?}");
+    assert_eq!(w[16], "... and 184 more MATL warnings");
+}
+
 /// `../shared/scenes/vox/<name>`, or `None` with a notice.
 fn shared(name: &str) -> Option<VoxModel> {
     let path = PathBuf::from("../shared/scenes/vox").join(name);

@@ -139,7 +139,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
                 boxes: Boxes::Model(model),
                 target: (model.bounds().min + model.bounds().max).as_vec3() * 0.5,
                 default_position: None,
-                cameras: args.vox.as_deref().map(|path| (path, model.cameras())),
+                cameras: args.vox.as_deref().map(|path| (path, model.as_ref())),
             },
         ),
     };

@@ -3,13 +3,13 @@
 
 use std::path::Path;
 
-use voxtrace::{CameraSettings, Projection, VoxCamera, VoxCameraMode};
+use voxtrace::{CameraSettings, Projection, VoxCamera, VoxCameraMode, VoxModel};
 
 use crate::args::Args;
 
-/// The cameras `--camera` may pick from: the `.vox` file's path and its
-/// cameras; `None` for the terrain.
-pub type FileCameras<'a> = Option<(&'a Path, &'a [VoxCamera])>;
+/// The cameras `--camera` may pick from: the `.vox` file's path and the
+/// scene loaded from it; `None` for the terrain.
+pub type FileCameras<'a> = Option<(&'a Path, &'a VoxModel)>;
 
 /// What the file's camera `n` names, or why it cannot be used.
 ///
@@ -22,14 +22,25 @@ pub fn file_camera(
     n: u32,
     cameras: FileCameras<'_>,
 ) -> Result<CameraSettings, String> {
-    let Some((path, cameras)) = cameras else {
+    let Some((path, model)) = cameras else {
         return Err(format!(
             "--camera {n} picks a camera of a .vox file: give --vox FILE (the terrain has none)"
         ));
     };
     let file = path.display();
+    let cameras = model.cameras();
     let Some(camera) = cameras.iter().find(|c| c.id == n) else {
-        return Err(format!("--camera {n}: {file} {}", how_many(cameras)));
+        let malformed = match model.malformed_cameras() {
+            (0, _) | (_, None) => String::new(),
+            (1, Some(first)) => format!("; {first}"),
+            (count, Some(first)) => {
+                format!("; {count} rCAM chunks are malformed, the first: {first}")
+            }
+        };
+        return Err(format!(
+            "--camera {n}: {file} {}{malformed}",
+            how_many(cameras)
+        ));
     };
     let projection = match camera.mode {
         VoxCameraMode::Panorama => {
@@ -62,13 +73,13 @@ pub fn file_camera(
     })
 }
 
-/// "has 10 cameras, 0 to 9", "has no cameras (no rCAM chunks)", or the ids
-/// when they are not a run from 0.
+/// "has 10 cameras, 0 to 9", "has no cameras", or the ids when they are
+/// not a run from 0.
 fn how_many(cameras: &[VoxCamera]) -> String {
     let count = cameras.len();
     let run = cameras.iter().enumerate().all(|(i, c)| c.id as usize == i);
     match count {
-        0 => "has no cameras (no rCAM chunks)".to_string(),
+        0 => "has no cameras".to_string(),
         1 if run => "has 1 camera, 0".to_string(),
         _ if run => format!("has {count} cameras, 0 to {}", count - 1),
         _ => {

@@ -208,6 +208,17 @@ fn a_camera_the_file_lacks_is_refused_naming_how_many_it_has() {
         &["--vox", none, "--camera", "0", "--out", out],
         "has no cameras",
     );
+    // A malformed rCAM chunk is named, with what is wrong with it, not
+    // taken for a file without cameras.
+    let mut lying = 0u32.to_le_bytes().to_vec();
+    lying.extend(1000u32.to_le_bytes()); // a DICT count past the chunk
+    let broken = scratch("broken.vox");
+    std::fs::write(&broken, scene(&[chunk(b"rCAM", &lying, &[])])).unwrap();
+    let broken = broken.to_str().unwrap();
+    refused(
+        &["--vox", broken, "--camera", "0", "--out", out],
+        "has no cameras; rCAM chunk 0 (camera 0) is malformed: its DICT's count",
+    );
     // The terrain has no cameras at all.
     refused(
         &["--size", "20", "--camera", "0", "--out", out],

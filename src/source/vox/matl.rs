@@ -22,6 +22,7 @@ use std::vec::Vec;
 use dot_vox::Material as VoxMaterial;
 
 use crate::material::{Material, Materials};
+use crate::source::vox::warnings::Capped;
 
 /// One MATL key's value: `Ok(None)` when absent, `Err` text when it is
 /// not a number.
@@ -39,9 +40,9 @@ fn number(m: &VoxMaterial, key: &str) -> Result<Option<f32>, String> {
 }
 
 /// Reads materials for the entries `used` marks, warning (one line each,
-/// naming the material id and key) about values that are not numbers, out
-/// of range or missing; each such value falls back to the nearest usable
-/// one.
+/// naming the material id and key: the first 16, then a line counting the
+/// rest) about values that are not numbers, out of range or missing; each
+/// such value falls back to the nearest usable one.
 pub(crate) fn materials(
     matl: &[VoxMaterial],
     used: &[bool; 256],
@@ -49,6 +50,7 @@ pub(crate) fn materials(
 ) -> Materials {
     let mut table = Materials::all_diffuse();
     let mut media = Vec::new();
+    let mut lines = Capped::new("MATL");
     for m in matl {
         let Ok(index) = u8::try_from(m.id) else {
             continue;
@@ -66,19 +68,19 @@ pub(crate) fn materials(
                         Ok(Some(v)) if (lo..=hi).contains(&v) => return v,
                         Ok(Some(v)) => {
                             let clamped = v.clamp(lo, hi);
-                            warnings.push(format!(
+                            lines.push(format!(
                                 "material {index}: {key} is {v}, {what}; using {clamped}"
                             ));
                             return clamped;
                         }
                         Err(e) => {
-                            warnings.push(format!("{e}; using {default}"));
+                            lines.push(format!("{e}; using {default}"));
                             return default;
                         }
                     }
                 }
                 if required {
-                    warnings.push(format!(
+                    lines.push(format!(
                         "material {index}: {} is missing; using {default}",
                         keys[0]
                     ));
@@ -125,7 +127,7 @@ pub(crate) fn materials(
                 None
             }
             other => {
-                warnings.push(format!(
+                lines.push(format!(
                     "material {index}: _type '{other}' is unknown; rendering it diffuse"
                 ));
                 None
@@ -137,10 +139,11 @@ pub(crate) fn materials(
     }
     if !media.is_empty() {
         let ids: Vec<String> = media.iter().map(|i| format!("{i}")).collect();
-        warnings.push(format!(
+        lines.push(format!(
             "materials {} are media or cloud, not simulated: rendered diffuse",
             ids.join(", ")
         ));
     }
+    lines.append_to(warnings);
     table
 }

@@ -4,35 +4,29 @@
 //! a box that meets no chunk is known empty without looking inside.
 
 use std::boxed::Box;
-use std::collections::HashMap;
 use std::format;
 use std::string::String;
 use std::vec::Vec;
 
 use glam::{IVec3, U8Vec3};
 
-use crate::geom::{IAabb, MAX_COORD};
+use crate::geom::IAabb;
 use crate::material::{MaterialKind, Materials};
-use crate::source::vox::rcam::VoxCamera;
+use crate::source::vox::camera::VoxCamera;
+use crate::source::vox::index::{ChunkIndex, CHUNK, CHUNK_LOG, CHUNK_VOXELS};
+use crate::source::vox::rcam::Cameras;
 use crate::source::vox::robj::VoxSettings;
 use crate::source::vox::scene_graph::{placements, Placement, VoxError, MAX_PLACED};
 
+pub(crate) mod camera;
 pub(crate) mod chunks;
+pub(crate) mod index;
 pub(crate) mod matl;
 pub(crate) mod rcam;
 pub(crate) mod robj;
 pub(crate) mod scene_graph;
+pub(crate) mod warnings;
 use crate::voxel::{fill_by_position, holds, Palette, Region, VoxelSource};
-
-/// Chunk side, as a shift: 8 voxels.
-const CHUNK_LOG: i32 = 3;
-const CHUNK: i32 = 1 << CHUNK_LOG;
-const CHUNK_VOXELS: usize = (CHUNK * CHUNK * CHUNK) as usize;
-
-/// The most chunks a scene may fill: 512 MiB of voxels. Scattered voxels
-/// can each open a chunk of their own, so the voxel limit alone would
-/// allow far more.
-const MAX_CHUNKS: usize = 1 << 20;
 
 /// A MagicaVoxel scene: every model of the file where MagicaVoxel shows it,
 /// in voxtrace's axes (y up; MagicaVoxel's z becomes y).
@@ -47,8 +41,9 @@ const MAX_CHUNKS: usize = 1 << 20;
 pub struct VoxModel {
     bounds: IAabb,
     palette: Palette,
-    /// Chunk coordinates (position >> 3) to an index into `chunks`.
-    index: HashMap<IVec3, u32>,
+    /// Which chunk coordinates (position >> 3) hold voxels: chunk `i` of
+    /// `chunks` is the index's `i`-th.
+    index: ChunkIndex,
     chunks: Vec<[u8; CHUNK_VOXELS]>,
     voxels: usize,
     /// Materials of the palette entries voxels use (the rest diffuse).
@@ -56,8 +51,8 @@ pub struct VoxModel {
     /// Emissive voxels, sorted, so the light list is the same every load.
     emitters: Vec<IVec3>,
     settings: VoxSettings,
-    /// The rCAM cameras, by id.
-    cameras: Vec<VoxCamera>,
+    /// The rCAM cameras, by id, and the malformed rCAM chunks.
+    cameras: Cameras,
     warnings: Vec<String>,
 }
 
@@ -117,26 +112,55 @@ impl VoxModel {
             // the pivot; `>> 1` floors back to the voxel holding it.
             ((p.rotation * (2 * (local - pivot) + 1)) >> 1) + p.translation
         };
+        let (models, world) = (&data.models, &world);
+        let voxels = || {
+            placed
+                .iter()
+                .flat_map(move |p| models[p.model].voxels.iter().map(move |v| (p, v)))
+                .map(move |(p, v)| (world(p, v), v.i + 1))
+        };
+        // Count the chunks first (8 bytes each), then allocate them once.
+        let index = ChunkIndex::count(voxels().map(|(pos, _)| pos), total)?;
+        let mut chunks = Vec::new();
+        chunks
+            .try_reserve_exact(index.len())
+            .map_err(|_| VoxError::TooLarge("its chunks cannot be allocated".into()))?;
+        chunks.resize(index.len(), [0; CHUNK_VOXELS]);
         let mut model = VoxModel {
             bounds: IAabb {
                 min: IVec3::MAX,
                 max: IVec3::MIN,
             },
             palette: Palette::new(&colors),
-            index: HashMap::new(),
-            chunks: Vec::new(),
+            index,
+            chunks,
             voxels: 0,
             materials: Box::new(Materials::all_diffuse()),
             emitters: Vec::new(),
             settings: robj::settings(bytes),
-            cameras: Vec::new(),
+            cameras: Cameras::default(),
             warnings: Vec::new(),
         };
         model.cameras = rcam::cameras(bytes, &mut model.warnings);
-        for p in &placed {
-            for v in &data.models[p.model].voxels {
-                model.place(world(p, v), v.i + 1)?;
-            }
+        let mut last: Option<(IVec3, usize)> = None;
+        for (pos, material) in voxels() {
+            let key = pos >> CHUNK_LOG;
+            let slot = match last {
+                Some((k, slot)) if k == key => slot,
+                _ => {
+                    // Every key was indexed by `ChunkIndex::count`.
+                    let Some(slot) = model.index.slot(key) else {
+                        continue;
+                    };
+                    last = Some((key, slot));
+                    slot
+                }
+            };
+            let cell = &mut model.chunks[slot][in_chunk(pos)];
+            model.voxels += usize::from(*cell == 0);
+            *cell = material;
+            model.bounds.min = model.bounds.min.min(pos);
+            model.bounds.max = model.bounds.max.max(pos + 1);
         }
         if model.voxels == 0 {
             model.bounds = IAabb {
@@ -161,8 +185,8 @@ impl VoxModel {
         *self.materials = matl::materials(matl, &used, &mut self.warnings);
         let glows = |m: u8| self.materials.get(m).kind() == MaterialKind::Emissive;
         let mut emitters = Vec::new();
-        for (&key, &slot) in &self.index {
-            for (i, &m) in self.chunks[slot as usize].iter().enumerate() {
+        for (key, slot) in self.index.keys() {
+            for (i, &m) in self.chunks[slot].iter().enumerate() {
                 if m != 0 && glows(m) {
                     let i = i as i32;
                     let local = IVec3::new(
@@ -174,8 +198,8 @@ impl VoxModel {
                 }
             }
         }
-        // The chunk index is a hash map: sort, so every load lists the
-        // emitters in one order (the order light samples pick them in).
+        // The chunks are in Morton order: sort, so the light list is in
+        // position order (the order light samples pick them in).
         emitters.sort_unstable_by_key(|p| (p.x, p.y, p.z));
         self.emitters = emitters;
     }
@@ -202,49 +226,27 @@ impl VoxModel {
     /// The file's cameras (its rCAM chunks), sorted by id.
     #[must_use]
     pub fn cameras(&self) -> &[VoxCamera] {
-        &self.cameras
+        &self.cameras.cameras
+    }
+
+    /// How many of the file's rCAM chunks are malformed (hold no camera),
+    /// and the first of them, named, with what is wrong with it.
+    #[must_use]
+    pub fn malformed_cameras(&self) -> (usize, Option<&str>) {
+        (
+            self.cameras.malformed,
+            self.cameras.first_malformed.as_deref(),
+        )
     }
 
     /// One line per MATL or rCAM value that was not a number, out of range or
-    /// missing (naming the material id and key), and per kind of material
-    /// not simulated.
+    /// missing (naming the material id and key), per malformed rCAM chunk
+    /// and per kind of material not simulated: the first 16 of MATL and of
+    /// rCAM, then a line counting the rest ("... and 749 more MATL
+    /// warnings").
     #[must_use]
     pub fn warnings(&self) -> &[String] {
         &self.warnings
-    }
-
-    /// Sets the voxel at `pos` to `material`, growing the bounds.
-    fn place(&mut self, pos: IVec3, material: u8) -> Result<(), VoxError> {
-        if pos.abs().max_element() >= MAX_COORD {
-            return Err(VoxError::TooLarge(format!(
-                "a voxel lands at {pos}, beyond +-{MAX_COORD}"
-            )));
-        }
-        let key = pos >> CHUNK_LOG;
-        let slot = match self.index.get(&key) {
-            Some(&i) => i as usize,
-            None => {
-                if self.chunks.len() >= MAX_CHUNKS {
-                    return Err(VoxError::TooLarge(format!(
-                        "its voxels fill more than {MAX_CHUNKS} chunks of 8^3 ({} bytes)",
-                        MAX_CHUNKS * CHUNK_VOXELS
-                    )));
-                }
-                let no_memory = |_| VoxError::TooLarge("its chunks cannot be allocated".into());
-                self.chunks.try_reserve(1).map_err(no_memory)?;
-                self.index.try_reserve(1).map_err(no_memory)?;
-                self.chunks.push([0; CHUNK_VOXELS]);
-                let i = self.chunks.len() - 1;
-                self.index.insert(key, i as u32);
-                i
-            }
-        };
-        let cell = &mut self.chunks[slot][in_chunk(pos)];
-        self.voxels += usize::from(*cell == 0);
-        *cell = material;
-        self.bounds.min = self.bounds.min.min(pos);
-        self.bounds.max = self.bounds.max.max(pos + 1);
-        Ok(())
     }
 
     /// The tight box around the scene's voxels.
@@ -259,11 +261,26 @@ impl VoxModel {
         self.voxels
     }
 
+    /// Bytes the loaded scene holds on the heap: its chunks (512 bytes
+    /// each), their index, the light list, cameras and warnings. A memory
+    /// budget adds these to what it builds from the scene.
+    #[must_use]
+    pub fn heap_bytes(&self) -> usize {
+        let strings: usize = self.warnings.iter().map(String::capacity).sum();
+        self.chunks.capacity() * CHUNK_VOXELS
+            + self.index.heap_bytes()
+            + self.emitters.capacity() * core::mem::size_of::<IVec3>()
+            + self.cameras.cameras.capacity() * core::mem::size_of::<VoxCamera>()
+            + self.warnings.capacity() * core::mem::size_of::<String>()
+            + strings
+            + core::mem::size_of::<Materials>()
+    }
+
     /// The position of every solid voxel, chunk by chunk (in no particular
     /// order): for framing a camera on the voxels themselves.
     pub fn positions(&self) -> impl Iterator<Item = IVec3> + '_ {
-        self.index.iter().flat_map(move |(&key, &slot)| {
-            let chunk = &self.chunks[slot as usize];
+        self.index.keys().flat_map(move |(key, slot)| {
+            let chunk = &self.chunks[slot];
             (0..CHUNK_VOXELS).filter(|&i| chunk[i] != 0).map(move |i| {
                 let i = i as i32;
                 let local = IVec3::new(
@@ -278,8 +295,7 @@ impl VoxModel {
 
     /// The chunk holding `pos`, if any voxel is in it.
     fn chunk(&self, pos: IVec3) -> Option<&[u8; CHUNK_VOXELS]> {
-        let i = *self.index.get(&(pos >> CHUNK_LOG))?;
-        self.chunks.get(i as usize)
+        self.chunks.get(self.index.slot(pos >> CHUNK_LOG)?)
     }
 }
 
@@ -292,7 +308,8 @@ impl VoxelSource for VoxModel {
         self.chunk(pos).map_or(0, |c| c[in_chunk(pos)])
     }
 
-    /// Zero, then the voxels of every chunk that meets the region.
+    /// Zero, then the voxels of every chunk that meets the region: one
+    /// lookup per chunk, one copy per row of a chunk.
     fn fill_box(&self, region: IAabb, out: &mut [u8]) {
         if region.is_empty() {
             return;
@@ -304,55 +321,48 @@ impl VoxelSource for VoxModel {
         let (sx, sy) = (size.x as usize, size.y as usize);
         let len = sx * sy * size.z as usize; // holds: at most out.len()
         out[..len].fill(0);
-        if self.classify(region) == Region::Empty {
+        let inside = region.intersect(&self.bounds);
+        if inside.is_empty() {
             return;
         }
-        for (zi, z) in (region.min.z..region.max.z).enumerate() {
-            for (yi, y) in (region.min.y..region.max.y).enumerate() {
-                let row = sx * (yi + sy * zi);
-                // One chunk lookup per run of up to 8 voxels of the row.
-                let mut x = region.min.x;
-                while x < region.max.x {
-                    let run_end = ((x >> CHUNK_LOG) + 1) << CHUNK_LOG;
-                    let end = run_end.min(region.max.x);
-                    if let Some(chunk) = self.chunk(IVec3::new(x, y, z)) {
-                        for xx in x..end {
-                            let i = row + (xx - region.min.x) as usize;
-                            if let Some(slot) = out.get_mut(i) {
-                                *slot = chunk[in_chunk(IVec3::new(xx, y, z))];
-                            }
-                        }
-                    }
-                    x = end;
+        let (lo, hi) = (inside.min >> CHUNK_LOG, (inside.max - 1) >> CHUNK_LOG);
+        if !self.index.any_in(lo, hi) {
+            return;
+        }
+        for key in (IAabb {
+            min: lo,
+            max: hi + 1,
+        })
+        .iter()
+        {
+            let Some(slot) = self.index.slot(key) else {
+                continue;
+            };
+            let chunk = &self.chunks[slot];
+            let corner = key << CHUNK_LOG;
+            let part = inside.intersect(&IAabb::new(corner, corner + CHUNK));
+            let width = (part.max.x - part.min.x) as usize;
+            for z in part.min.z..part.max.z {
+                for y in part.min.y..part.max.y {
+                    let from = IVec3::new(part.min.x, y, z);
+                    let at = from - region.min;
+                    let row = at.x as usize + sx * (at.y as usize + sy * at.z as usize);
+                    let start = in_chunk(from);
+                    out[row..row + width].copy_from_slice(&chunk[start..start + width]);
                 }
             }
         }
     }
 
-    /// Empty when no chunk with voxels meets the region: by looking up the
-    /// region's chunks or by scanning the chunks, whichever is fewer.
+    /// Empty when no chunk with voxels meets the region, found in the
+    /// index's pyramid of occupied cells.
     fn classify(&self, region: IAabb) -> Region {
         let inside = region.intersect(&self.bounds);
-        if inside.is_empty() {
-            return Region::Empty;
-        }
-        let lo = inside.min >> CHUNK_LOG;
-        let hi = (inside.max - 1) >> CHUNK_LOG;
-        let span = (hi - lo + 1).as_uvec3();
-        let region_chunks = u64::from(span.x) * u64::from(span.y) * u64::from(span.z);
-        let occupied = if region_chunks <= self.index.len() as u64 {
-            IAabb {
-                min: lo,
-                max: hi + 1,
-            }
-            .iter()
-            .any(|key| self.index.contains_key(&key))
-        } else {
-            self.index
-                .keys()
-                .any(|k| k.cmpge(lo).all() && k.cmple(hi).all())
-        };
-        if occupied {
+        if !inside.is_empty()
+            && self
+                .index
+                .any_in(inside.min >> CHUNK_LOG, (inside.max - 1) >> CHUNK_LOG)
+        {
             Region::Mixed
         } else {
             Region::Empty

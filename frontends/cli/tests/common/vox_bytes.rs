@@ -307,3 +307,53 @@ pub fn hostile_files() -> Vec<(String, Vec<u8>)> {
     cases.push(("magic-only.vox".into(), b"VOX ".to_vec()));
     cases
 }
+
+/// An instance storm: `fan^levels` instances of one model, through
+/// `levels` nested groups of `fan` transforms, child `i` of level `l`
+/// translated by `i * spacing` along axis `l % 3`, so that instances stand
+/// on a grid `spacing` apart and, `spacing` past the model, fill distinct
+/// chunks. The model holds `voxels` voxels 8 apart (each in a chunk of its
+/// own; 4,096 at most). A file of about `levels * fan * 60` bytes.
+pub fn storm(levels: i32, fan: i32, spacing: i32, voxels: usize) -> Vec<u8> {
+    let side = |n: usize| 8 * n.div_ceil(32 * 32).max(1) as u32;
+    let spread: Vec<[u8; 4]> = (0..voxels)
+        .map(|j| {
+            [
+                8 * (j % 32) as u8,
+                8 * (j / 32 % 32) as u8,
+                8 * (j / 1024) as u8,
+                1,
+            ]
+        })
+        .collect();
+    let size = if voxels <= 1 {
+        [1, 1, 1]
+    } else {
+        [256, 256, side(voxels)]
+    };
+    let mut chunks = model(size, &spread);
+    // Node 0: the root transform; then per level a group and its fan of
+    // transforms; last, the shape.
+    let group_of = |level: i32| 1 + level * (fan + 1);
+    let shape_id = group_of(levels);
+    chunks.push(transform(0, group_of(0), None));
+    for level in 0..levels {
+        let g = group_of(level);
+        let kids: Vec<i32> = (1..=fan).map(|i| g + i).collect();
+        chunks.push(group(g, &kids));
+        let next = if level + 1 == levels {
+            shape_id
+        } else {
+            group_of(level + 1)
+        };
+        for (i, &kid) in kids.iter().enumerate() {
+            let mut t = [0; 3];
+            t[(level % 3) as usize] = i as i32 * spacing;
+            let t = format!("{} {} {}", t[0], t[1], t[2]);
+            chunks.push(transform(kid, next, Some(&t)));
+        }
+    }
+    chunks.push(shape(shape_id, 0));
+    chunks.push(palette());
+    file(&chunks)
+}
