@@ -216,8 +216,8 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
         vec![out.clone()]
     };
     // Refuse what cannot fit before building it, naming the bytes.
-    let voxels = match &subject {
-        Subject::Model(model) => Some(model.voxel_count() as u64),
+    let loaded = match &subject {
+        Subject::Model(model) => Some((model.voxel_count() as u64, model.heap_bytes() as u128)),
         Subject::Terrain { .. } => None,
     };
     let pixels = u64::from(region.width) * u64::from(region.height);
@@ -230,7 +230,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
         }
     };
     let frame = (pixels, encoder);
-    memory::budget(args.backend, bounds, voxels, frame, args.max_memory).check(args.backend)?;
+    memory::budget(args.backend, bounds, loaded, frame, args.max_memory).check(args.backend)?;
     // The first file is a temporary one beside its path from now on, which
     // replaces the path only once complete; on any error it is removed.
     let first_file = if to_stdout {

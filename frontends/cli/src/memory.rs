@@ -13,7 +13,8 @@ const FRAME_BYTES_PER_PIXEL: u128 = 4;
 
 /// What the run will need and what it may use, for one refusal message.
 pub struct Budget {
-    /// Bytes the storage needs: exact for dense, an estimate for the octree.
+    /// Bytes the storage needs (exact for dense, an estimate for the
+    /// octree), and a `.vox` model's own, loaded beside it.
     pub storage: u128,
     /// Bytes of the frame at its peak: its pixels and the encoder's own.
     pub frame: u128,
@@ -24,19 +25,21 @@ pub struct Budget {
 }
 
 /// The budget of a render of `pixels` pixels with `backend` over `bounds`,
-/// whose encoder allocates `encoder` bytes besides; `solid_voxels` is the
-/// count when the source knows it (a `.vox` model, `None` for the terrain).
+/// whose encoder allocates `encoder` bytes besides; `model` is a loaded
+/// `.vox` model's solid voxel count and heap bytes (`None` for the
+/// terrain).
 pub fn budget(
     backend: Backend,
     bounds: IAabb,
-    solid_voxels: Option<u64>,
+    model: Option<(u64, u128)>,
     (pixels, encoder): (u64, u128),
     max_memory: Option<u64>,
 ) -> Budget {
+    let solid_voxels = model.map(|(voxels, _)| voxels);
     let storage = match backend {
         Backend::Dense => voxtrace::dense_bytes(bounds),
         Backend::Octree => voxtrace::octree_bytes(bounds, solid_voxels),
-    };
+    } + model.map_or(0, |(_, bytes)| bytes);
     let available = match max_memory {
         Some(bytes) => (u128::from(bytes), "--max-memory"),
         None => available_memory(),
@@ -45,7 +48,7 @@ pub fn budget(
         storage,
         frame: u128::from(pixels) * FRAME_BYTES_PER_PIXEL + encoder,
         available,
-        model: solid_voxels.is_some(),
+        model: model.is_some(),
     }
 }
 
@@ -58,9 +61,11 @@ impl Budget {
         if self.storage.saturating_add(self.frame) <= available {
             return Ok(());
         }
-        let what = match backend {
-            Backend::Dense => "the dense array for this scene needs",
-            Backend::Octree => "the octree for this scene needs about",
+        let what = match (backend, self.model) {
+            (Backend::Dense, false) => "the dense array for this scene needs",
+            (Backend::Octree, false) => "the octree for this scene needs about",
+            (Backend::Dense, true) => "the dense array for this model and the model need",
+            (Backend::Octree, true) => "the octree for this model and the model need about",
         };
         Err(format!(
             "{what} {}, estimated before building, and the frame {}: more than \
@@ -220,7 +225,7 @@ mod tests {
 
     #[test]
     fn a_refusal_suggests_only_what_applies_to_the_scene() {
-        let refuse = |backend, model: Option<u64>, frame| {
+        let refuse = |backend, model: Option<(u64, u128)>, frame| {
             let b = budget(backend, IAabb::centered(100), model, frame, Some(1000));
             b.check(backend).unwrap_err()
         };
@@ -237,15 +242,35 @@ mod tests {
             "{terrain}"
         );
         // A .vox model's size is its own: --size does nothing to it.
-        let model = refuse(Backend::Dense, Some(1 << 20), small);
+        let model = refuse(Backend::Dense, Some((1 << 20, 1 << 16)), small);
         assert!(
             model.ends_with("try --backend octree, or --max-memory to override"),
             "{model}"
         );
-        let model = refuse(Backend::Octree, Some(1 << 20), small);
+        let model = refuse(Backend::Octree, Some((1 << 20, 1 << 16)), small);
         assert!(model.ends_with("try --max-memory to override"), "{model}");
+        // The loaded model's own bytes count with the storage.
+        let alone = budget(
+            Backend::Octree,
+            IAabb::centered(100),
+            Some((1 << 20, 0)),
+            small,
+            None,
+        );
+        let loaded = budget(
+            Backend::Octree,
+            IAabb::centered(100),
+            Some((1 << 20, 1 << 16)),
+            small,
+            None,
+        );
+        assert_eq!(loaded.storage - alone.storage, 1 << 16);
+        assert!(
+            model.contains("the octree for this model and the model need about"),
+            "{model}"
+        );
         // A frame larger than the storage: a smaller frame, for either.
-        for voxels in [None, Some(1)] {
+        for voxels in [None, Some((1, 512))] {
             let big_frame = refuse(Backend::Octree, voxels, (1 << 30, 0));
             assert!(
                 big_frame.ends_with("try a smaller frame (--width and --height, or --tiles), or --max-memory to override")

@@ -5,8 +5,10 @@
 //!
 //! This binary holds this one test alone: the peak resident set it reads
 //! (`getrusage(RUSAGE_CHILDREN)`) is the largest of its own children only.
-//! Times are printed; the 1 s bound is asserted for the optimized binary
-//! (`.ci/run`), where each of these takes a few milliseconds.
+//! The resident set is asserted (under 100 MB); times are printed, not
+//! asserted, as this machine is shared (each takes a few milliseconds
+//! optimized; `storms.rs` bounds CPU time, which a neighbour cannot
+//! inflate).
 
 mod common;
 
