@@ -3,7 +3,25 @@
 //! without the usage block; and control characters (a newline in a file
 //! name) escaped, so that a message stays one line.
 
+use std::io::Write;
+
 use clap::error::{ContextKind, ContextValue, ErrorKind};
+
+/// Writes one formatted line to standard error, as `eprintln!` does, but
+/// never panics: with standard error closed or a broken pipe the line is
+/// lost and the exit code still tells (`eprintln!` would panic, turning an
+/// exit 2 into 101, or a signal's exit into a run that goes on).
+#[macro_export]
+macro_rules! say {
+    ($($arg:tt)*) => {
+        $crate::errors::write_line(::std::format_args!($($arg)*))
+    };
+}
+
+/// The line [`say!`] writes, ignoring a failure to write it.
+pub fn write_line(line: std::fmt::Arguments<'_>) {
+    let _ = writeln!(std::io::stderr().lock(), "{line}");
+}
 
 /// `error` rendered on one line starting with `error:`; `argv` is the
 /// command line (for the tip about negative values).

@@ -13,7 +13,7 @@ use voxtrace_cli::atomic::{exit_with_error, remove_on_signal, AtomicFile};
 use voxtrace_cli::part::{fnv1a64, settings_text, write_part, Placement};
 use voxtrace_cli::stitch::{list, stitch};
 use voxtrace_cli::tiles::{frames_for_task, tile_name, Grid, TaskIndex};
-use voxtrace_cli::FrameRange;
+use voxtrace_cli::{say, FrameRange};
 
 use crate::args::Args;
 use crate::{memory, output};
@@ -264,7 +264,7 @@ fn run_stitch(args: &StitchArgs) -> Result<(), String> {
             .map_err(|e| format!("cannot write to standard output: {e}"))?,
     }
     if !frame.missing.is_empty() {
-        eprintln!(
+        say!(
             "note: missing tiles of the {} grid drawn as a checkerboard: {}",
             frame.grid,
             list(&frame.missing)

@@ -25,6 +25,7 @@ use voxtrace::{
 };
 use voxtrace_cli::atomic::{exit_with_error, remove_on_signal, AtomicFile};
 use voxtrace_cli::errors::{self, escape_controls};
+use voxtrace_cli::say;
 use voxtrace_cli::{
     export_vox, frame_path, on_threads, terrain_box, turntable, Boxes, BuiltScene, FrameRange,
 };
@@ -64,7 +65,7 @@ fn clap_failure(e: &clap::Error, argv: &[String]) -> ExitCode {
         let _ = e.print();
         return ExitCode::SUCCESS;
     }
-    eprintln!("{}", errors::one_line(e, argv));
+    say!("{}", errors::one_line(e, argv));
     ExitCode::from(2)
 }
 
@@ -253,14 +254,14 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     // the one line on stderr. Escaped: a path a warning quotes cannot
     // start a line of its own.
     if let Subject::Terrain { seed, random: true } = subject {
-        eprintln!("seed: {seed}");
+        say!("seed: {seed}");
     }
     warnings
         .iter()
-        .for_each(|w| eprintln!("warning: {}", escape_controls(w)));
+        .for_each(|w| say!("warning: {}", escape_controls(w)));
     notes
         .iter()
-        .for_each(|note| eprintln!("note: {}", escape_controls(note)));
+        .for_each(|note| say!("note: {}", escape_controls(note)));
     Ok(())
 }
 
@@ -289,11 +290,11 @@ fn export(args: &Args, path: &Path) -> Result<(), String> {
         .map_err(|e| format!("cannot write --export-vox {}: {e}", path.display()))?;
     // Only now: an error stays the one line on stderr.
     if random {
-        eprintln!("seed: {seed}");
+        say!("seed: {seed}");
     }
     if args.stats {
-        eprintln!("voxels: {count}");
-        eprintln!("file_bytes: {}", bytes.len());
+        say!("voxels: {count}");
+        say!("file_bytes: {}", bytes.len());
     }
     Ok(())
 }
@@ -426,21 +427,21 @@ impl Job<'_> {
             let ms = |d: Duration| d.as_secs_f64() * 1e3;
             let mrays = rays.primary_rays as f64 / render.as_secs_f64().max(1e-9) / 1e6;
             let v = |v: voxtrace::glam::IVec3| format!("{},{},{}", v.x, v.y, v.z);
-            eprintln!("build_ms: {:.3}", ms(build));
-            eprintln!("render_ms: {:.3}", ms(render));
-            eprintln!("encode_ms: {:.3}", ms(encode));
-            eprintln!("primary_rays: {}", rays.primary_rays);
-            eprintln!("shadow_rays: {}", rays.shadow_rays);
-            eprintln!("ao_rays: {}", rays.ao_rays);
-            eprintln!("reflection_rays: {}", rays.reflection_rays);
-            eprintln!("refraction_rays: {}", rays.refraction_rays);
-            eprintln!("light_rays: {}", rays.light_rays);
-            eprintln!("effects: {}", self.plan);
-            eprintln!("storage_bytes: {}", built.scene().storage_bytes());
-            eprintln!("mrays_per_s: {mrays:.3}");
-            eprintln!("scene_min: {}", v(self.bounds.min));
-            eprintln!("scene_max: {}", v(self.bounds.max));
-            eprintln!("camera: {}", describe(&cameras[0].1, args.up.is_some()));
+            say!("build_ms: {:.3}", ms(build));
+            say!("render_ms: {:.3}", ms(render));
+            say!("encode_ms: {:.3}", ms(encode));
+            say!("primary_rays: {}", rays.primary_rays);
+            say!("shadow_rays: {}", rays.shadow_rays);
+            say!("ao_rays: {}", rays.ao_rays);
+            say!("reflection_rays: {}", rays.reflection_rays);
+            say!("refraction_rays: {}", rays.refraction_rays);
+            say!("light_rays: {}", rays.light_rays);
+            say!("effects: {}", self.plan);
+            say!("storage_bytes: {}", built.scene().storage_bytes());
+            say!("mrays_per_s: {mrays:.3}");
+            say!("scene_min: {}", v(self.bounds.min));
+            say!("scene_max: {}", v(self.bounds.max));
+            say!("camera: {}", describe(&cameras[0].1, args.up.is_some()));
         }
         Ok(())
     }

@@ -158,6 +158,88 @@ fn every_terminating_signal_mid_render_leaves_the_old_file_and_no_temporary() {
     }
 }
 
+/// A signal the run started with ignored (`nohup` ignores SIGHUP) stays
+/// ignored: the run goes on, and a signal it does catch still cleans up.
+#[cfg(unix)]
+#[test]
+fn a_signal_ignored_at_the_start_stays_ignored() {
+    let dir = fresh_dir("nohup");
+    let out = dir.join("render.png");
+    std::fs::write(&out, OLD).unwrap();
+    // `trap '' HUP` is what nohup does before it execs the command.
+    let child = Command::new("sh")
+        .args(["-c", "trap '' HUP; exec \"$0\" \"$@\""])
+        .arg(env!("CARGO_BIN_EXE_voxtrace"))
+        .args(["--size", "100", "--width", "640", "--height", "360"])
+        .args(["--spp", "256", "--shadows", "--seed", "1", "--out"])
+        .arg(&out)
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let started = Instant::now();
+    while entries(&dir).len() < 2 {
+        assert!(
+            started.elapsed() < Duration::from_secs(60),
+            "no temporary file"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let pid = child.id() as libc::pid_t;
+    // SAFETY: kill only sends a signal to the child started above.
+    #[allow(unsafe_code)]
+    let sent = unsafe { libc::kill(pid, libc::SIGHUP) };
+    assert_eq!(sent, 0);
+    std::thread::sleep(Duration::from_millis(500));
+    let mut child = child;
+    assert!(
+        child.try_wait().unwrap().is_none(),
+        "an ignored SIGHUP ended the run"
+    );
+    // SAFETY: as above; the child is still running.
+    #[allow(unsafe_code)]
+    let sent = unsafe { libc::kill(pid, libc::SIGTERM) };
+    assert_eq!(sent, 0);
+    let result = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(143), "{stderr}");
+    assert_eq!(std::fs::read(&out).unwrap(), OLD);
+    assert_eq!(entries(&dir), ["render.png"]);
+}
+
+/// A standard error nobody reads (a pipe whose reader is gone) loses the
+/// lines, not the exit code: an error is still exit 2, never a panic's 101.
+#[cfg(unix)]
+#[test]
+fn a_broken_standard_error_keeps_the_exit_code() {
+    use std::os::fd::{FromRawFd, OwnedFd};
+    let dir = fresh_dir("broken-stderr");
+    let mut fds = [0 as libc::c_int; 2];
+    // SAFETY: pipe writes two new descriptors into the array it is given.
+    #[allow(unsafe_code)]
+    let made = unsafe { libc::pipe(fds.as_mut_ptr()) };
+    assert_eq!(made, 0);
+    // SAFETY: both descriptors were just made and are owned here alone.
+    #[allow(unsafe_code)]
+    let (reader, writer) = unsafe { (OwnedFd::from_raw_fd(fds[0]), OwnedFd::from_raw_fd(fds[1])) };
+    drop(reader);
+    let status = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
+        .args([
+            "--size",
+            "100",
+            "--max-memory",
+            "1K",
+            "--seed",
+            "1",
+            "--out",
+        ])
+        .arg(dir.join("render.png"))
+        .stderr(Stdio::from(writer))
+        .status()
+        .unwrap();
+    assert_eq!(status.code(), Some(2));
+    assert_eq!(entries(&dir), Vec::<String>::new());
+}
+
 /// A small render into `out`, run by `launcher` (empty: directly).
 fn quick_render(launcher: &[&str], out: &Path) -> std::process::Output {
     let (program, before) = match launcher.split_first() {

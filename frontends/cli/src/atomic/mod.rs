@@ -275,8 +275,16 @@ pub fn remove_on_signal() -> Result<(), String> {
                         for temp in list.iter() {
                             let _ = std::fs::remove_file(temp);
                         }
-                        eprintln!(
-                            "error: interrupted by {}; unfinished files removed, old ones kept",
+                        // On a terminal the progress bar may hold the line:
+                        // clear it, so that the error starts its own.
+                        use std::io::IsTerminal;
+                        let clear = if std::io::stderr().is_terminal() {
+                            "\r\x1b[2K"
+                        } else {
+                            ""
+                        };
+                        crate::say!(
+                            "{clear}error: interrupted by {}; unfinished files removed, old ones kept",
                             signals::name(signal)
                         );
                         std::process::exit(128 + signal);
@@ -302,7 +310,7 @@ pub fn remove_on_signal() -> Result<(), String> {
 /// cannot add a second line. Call it with every [`AtomicFile`] dropped.
 pub fn exit_with_error(message: &str) -> ! {
     let _held = pending();
-    eprintln!("error: {}", crate::errors::escape_controls(message));
+    crate::say!("error: {}", crate::errors::escape_controls(message));
     std::process::exit(2)
 }
 

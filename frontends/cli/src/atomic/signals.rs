@@ -24,7 +24,10 @@ const PORTABLE: [c_int; 11] = [
     SIGXFSZ,
 ];
 
-/// Every signal [`super::remove_on_signal`] catches.
+/// Every signal [`super::remove_on_signal`] catches: those above that the
+/// process did not start with ignored. A signal ignored at the start
+/// (`nohup` ignores SIGHUP; a shell's background job, SIGINT and SIGQUIT)
+/// stays ignored, as the parent asked: catching it would end the run.
 pub(super) fn caught() -> Vec<c_int> {
     let mut signals = PORTABLE.to_vec();
     #[cfg(any(target_os = "linux", target_os = "android"))]
@@ -32,7 +35,22 @@ pub(super) fn caught() -> Vec<c_int> {
         signals.extend([libc::SIGIO, libc::SIGPWR, libc::SIGSTKFLT]);
         signals.extend(libc::SIGRTMIN()..=libc::SIGRTMAX());
     }
+    signals.retain(|&signal| !ignored(signal));
     signals
+}
+
+/// Whether `signal`'s disposition is "ignore" now (before any handler of
+/// ours is installed, that is as the process started).
+fn ignored(signal: c_int) -> bool {
+    let mut old = std::mem::MaybeUninit::<libc::sigaction>::zeroed();
+    // SAFETY: with a null new action, sigaction only writes the current
+    // one into `old`, a valid, zeroed sigaction it may fill whole.
+    #[allow(unsafe_code)]
+    let read = unsafe { libc::sigaction(signal, std::ptr::null(), old.as_mut_ptr()) };
+    // SAFETY: zeroed is a valid sigaction, and a successful call filled it.
+    #[allow(unsafe_code)]
+    let old = unsafe { old.assume_init() };
+    read == 0 && old.sa_sigaction == libc::SIG_IGN
 }
 
 /// The signal's usual name (`SIGHUP`, `SIGRTMIN+3`).
