@@ -2,8 +2,9 @@
 //! that picks them ([`Shader::dispatch`]): the unshaded look, the debug
 //! view of the boxes a walk crosses, the lit look with its effects as
 //! `const` switches (shadows, occlusion, fog, supersampling), and the path
-//! tracer (whose kernel lives in `render/path/`) for scenes with metal,
-//! glass or emitters.
+//! tracer (whose kernel lives in `render/path/`, feature `path`) for scenes
+//! with metal, glass or emitters. Without the feature `effect-kernels` the
+//! lit look and the path tracer each compile one kernel, every switch on.
 
 use glam::{U8Vec3, UVec3};
 
@@ -11,6 +12,7 @@ use crate::geom::Ray;
 use crate::render::debug_view::{box_color, enters_near_edge};
 use crate::render::memories::Memories;
 use crate::render::options::Background;
+#[cfg(feature = "path")]
 use crate::render::path::{Path, PathSetup};
 use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
@@ -29,8 +31,12 @@ impl<'m> Shader<'_, 'm> {
         if o.debug {
             return job.run(&DebugView(self));
         }
+        #[cfg(feature = "path")]
         if let Some(setup) = &self.path {
             return self.dispatch_path(setup, job);
+        }
+        if !cfg!(feature = "effect-kernels") {
+            return job.run(&Lit::<true, true, true, true>(self));
         }
         let set = (
             o.shadows,
@@ -67,9 +73,14 @@ impl<'m> Shader<'_, 'm> {
 
     /// Runs `job` with the path tracer compiled for the material kinds
     /// the scene holds.
+    #[cfg(feature = "path")]
     fn dispatch_path<J: FrameJob>(&self, setup: &PathSetup<'m>, job: J) -> J::Output {
-        let kinds = setup.materials.kinds();
         let camera = self.camera;
+        if !cfg!(feature = "effect-kernels") {
+            // The kinds a scene lacks never match: the same pixels.
+            return job.run(&Path::<true, true, true> { camera, setup });
+        }
+        let kinds = setup.materials.kinds();
         macro_rules! path_kernels {
             ($(($g:literal, $m:literal, $e:literal)),* $(,)?) => {
                 match (kinds.glass, kinds.metal, kinds.emissive) {
@@ -90,6 +101,7 @@ impl<'m> Shader<'_, 'm> {
     }
 }
 
+#[cfg(feature = "path")]
 impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Kernel
     for Path<'_, '_, GLASS, METAL, EMIT>
 {
@@ -163,7 +175,10 @@ impl Kernel for DebugView<'_, '_, '_> {
 }
 
 /// The lit look with the chosen effects: shadows, ambient occlusion, fog and
-/// several samples per pixel, each compiled in only when on.
+/// several samples per pixel, each compiled in only when on. An effect
+/// runs when it is compiled in and the frame asks for it, so a kernel with
+/// more switches on gives the same pixels: builds without `effect-kernels`
+/// run every frame with the one that has them all.
 pub(super) struct Lit<
     's,
     'c,
@@ -187,7 +202,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kerne
         memory: &mut Memories<'s>,
     ) -> (u32, RayStats) {
         let camera = self.0.camera;
-        if !AA {
+        if !(AA && self.0.options.samples > 1) {
             let ray = camera.get_ray(x, y);
             let (color, stats) = self.sample(scene, &ray, t_start, x, y, 0, memory);
             if stats.primary_hits == 0 {
@@ -252,7 +267,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
         };
         let face = face_index(hit.face);
         let mut light = u32::from(shader.light[face]);
-        if SHADOWS && shader.sunlit[face] {
+        if SHADOWS && shader.options.shadows && shader.sunlit[face] {
             stats.shadow_rays += 1;
             if let Some(shadow) = secondary(ray, &hit, shader.sun) {
                 let blocker = scene.trace_within_with(&shadow, f32::INFINITY, &mut memory.shadow);
