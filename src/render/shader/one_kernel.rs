@@ -9,6 +9,7 @@ use alloc::vec::Vec;
 
 use glam::{IVec3, U8Vec3, Vec3};
 
+use crate::geom::IAabb;
 use crate::material::{Material, Materials};
 use crate::render::camera::{Camera, CameraSettings};
 use crate::render::options::{Background, Fog, Lighting, Occlusion, RenderOptions};
@@ -22,7 +23,6 @@ use crate::storage::dense::DenseScene;
 use crate::storage::octree::OctreeScene;
 use crate::voxel::{FnSource, Palette};
 use crate::with_materials::WithMaterials;
-use crate::IAabb;
 
 /// The whole frame with one kernel: its pixels and rays.
 struct Frame<'a, S: ?Sized> {
