@@ -8,7 +8,7 @@
 
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
-    render, Camera, CameraSettings, DenseScene, EffectPlan, FnSource, IAabb, Lighting, Look,
+    render, Camera, CameraSettings, DenseScene, EffectPlan, FnSource, Fog, IAabb, Lighting, Look,
     Material, Materials, Palette, RenderOptions, Scene, WithMaterials,
 };
 
@@ -55,13 +55,17 @@ fn metal_glass_and_emitters_are_shaded_as_diffuse_and_the_plan_says_so() {
     ];
     let scene = WithMaterials::new(&storage, &materials, &lamps);
 
-    let asked = RenderOptions::default();
+    let asked = RenderOptions {
+        samples: 2,
+        fog: Some(Fog { distance: 40.0 }),
+        ..RenderOptions::default()
+    };
     let all_diffuse = RenderOptions {
         lighting: Lighting {
             path_trace: true,
             ..Lighting::DEFAULT
         },
-        ..RenderOptions::default()
+        ..asked
     };
     for (scene_materials, options) in [(scene.materials(), asked), (None, all_diffuse)] {
         let plan = EffectPlan::new(&options, scene_materials);
@@ -74,7 +78,7 @@ fn metal_glass_and_emitters_are_shaded_as_diffuse_and_the_plan_says_so() {
         );
     }
     // The pixels of the same voxels with no materials at all.
-    let shaded = frame(&storage, &RenderOptions::default());
+    let shaded = frame(&storage, &asked);
     assert!(frame(&scene, &asked) == shaded);
     assert!(frame(&storage, &all_diffuse) == shaded);
 }

@@ -99,13 +99,6 @@ impl fmt::Display for EffectPlan {
                 if let Some(ao) = o.occlusion {
                     item(f, format_args!("ao({} rays)", ao.rays))?;
                 }
-                // Only a build without the path tracer shades these.
-                if wants_path(self.kinds, o) {
-                    item(
-                        f,
-                        format_args!("no path tracer (feature path): shaded as diffuse"),
-                    )?;
-                }
             }
             Look::Path => {
                 let light = &o.lighting;
@@ -134,6 +127,13 @@ impl fmt::Display for EffectPlan {
         }
         if o.fog.is_some() {
             item(f, format_args!("fog"))?;
+        }
+        // Only a build without the path tracer shades these.
+        if self.look == Look::Shaded && wants_path(self.kinds, o) {
+            item(
+                f,
+                format_args!("no path tracer (feature path): shaded as diffuse"),
+            )?;
         }
         Ok(())
     }
