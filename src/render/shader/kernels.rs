@@ -36,7 +36,7 @@ impl<'m> Shader<'_, 'm> {
             return self.dispatch_path(setup, job);
         }
         if !cfg!(feature = "effect-kernels") {
-            return job.run(&Lit::<true, true, true, true>(self));
+            return job.run(&Lit::<true, true, true, true, false>(self));
         }
         let set = (
             o.shadows,
@@ -47,7 +47,7 @@ impl<'m> Shader<'_, 'm> {
         macro_rules! lit_kernels {
             ($(($sh:literal, $ao:literal, $fog:literal, $aa:literal)),* $(,)?) => {
                 match set {
-                    $(($sh, $ao, $fog, $aa) => job.run(&Lit::<$sh, $ao, $fog, $aa>(self)),)*
+                    $(($sh, $ao, $fog, $aa) => job.run(&Lit::<$sh, $ao, $fog, $aa, true>(self)),)*
                 }
             };
         }
@@ -175,10 +175,13 @@ impl Kernel for DebugView<'_, '_, '_> {
 }
 
 /// The lit look with the chosen effects: shadows, ambient occlusion, fog and
-/// several samples per pixel, each compiled in only when on. An effect
-/// runs when it is compiled in and the frame asks for it, so a kernel with
-/// more switches on gives the same pixels: builds without `effect-kernels`
-/// run every frame with the one that has them all.
+/// several samples per pixel, each compiled in only when on.
+///
+/// `EXACT`: the frame asks for exactly the effects compiled in (the
+/// dispatch of `effect-kernels` builds). Otherwise an effect runs when it
+/// is compiled in and the frame asks for it, so the kernel with every
+/// switch on gives any frame its pixels: builds without `effect-kernels`
+/// run every frame with that one.
 pub(super) struct Lit<
     's,
     'c,
@@ -187,10 +190,11 @@ pub(super) struct Lit<
     const AO: bool,
     const FOG: bool,
     const AA: bool,
+    const EXACT: bool,
 >(pub(super) &'s Shader<'c, 'm>);
 
-impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kernel
-    for Lit<'_, '_, '_, SHADOWS, AO, FOG, AA>
+impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const EXACT: bool> Kernel
+    for Lit<'_, '_, '_, SHADOWS, AO, FOG, AA, EXACT>
 {
     #[inline]
     fn pixel<'s, S: Scene + ?Sized>(
@@ -202,7 +206,8 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kerne
         memory: &mut Memories<'s>,
     ) -> (u32, RayStats) {
         let camera = self.0.camera;
-        if !(AA && self.0.options.samples > 1) {
+        // (Occlusion and fog test their settings anyway.)
+        if !(AA && (EXACT || self.0.options.samples > 1)) {
             let ray = camera.get_ray(x, y);
             let (color, stats) = self.sample(scene, &ray, t_start, x, y, 0, memory);
             if stats.primary_hits == 0 {
@@ -242,8 +247,8 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kerne
     }
 }
 
-impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
-    Lit<'_, '_, '_, SHADOWS, AO, FOG, AA>
+impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const EXACT: bool>
+    Lit<'_, '_, '_, SHADOWS, AO, FOG, AA, EXACT>
 {
     /// One camera sample, its walk starting at `t_start`: its color (the
     /// sky's when it misses: `primary_hits` is then 0) and rays.
@@ -267,7 +272,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
         };
         let face = face_index(hit.face);
         let mut light = u32::from(shader.light[face]);
-        if SHADOWS && shader.options.shadows && shader.sunlit[face] {
+        if SHADOWS && (EXACT || shader.options.shadows) && shader.sunlit[face] {
             stats.shadow_rays += 1;
             if let Some(shadow) = secondary(ray, &hit, shader.sun) {
                 let blocker = scene.trace_within_with(&shadow, f32::INFINITY, &mut memory.shadow);

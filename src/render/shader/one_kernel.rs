@@ -81,7 +81,7 @@ fn the_lit_kernel_with_every_switch_on_renders_every_set_of_effects() {
                 camera: &camera,
             };
             assert!(
-                shader.dispatch(job()) == job().run(&Lit::<true, true, true, true>(&shader)),
+                shader.dispatch(job()) == job().run(&Lit::<true, true, true, true, false>(&shader)),
                 "effect set {set:04b} on {background:?}"
             );
         }
