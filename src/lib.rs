@@ -11,7 +11,9 @@
 //! default (face shading under a sun, one primary ray per pixel), with
 //! shadows, ambient occlusion, anti-aliasing, fog and the seed paper's debug
 //! view each opt-in; the renderer picks a pixel kernel compiled for exactly
-//! the chosen effects once per frame, and [`RayStats`] counts rays by kind.
+//! the chosen effects once per frame (feature `effect-kernels`), and
+//! [`RayStats`] counts rays by kind. Scenes with metal, glass or emitters
+//! are path-traced (feature `path`).
 //!
 //! The core is `#![no_std]` and allocation-explicit: storages build into
 //! caller buffers (`build_in`, sized by `required_len`), or under the `alloc`
@@ -49,6 +51,18 @@
 //! - `image`: conversions between frames and the image crate's `RgbaImage`
 //!   (`From<&Framebuffer>`, `TryFrom<&RgbaImage>`, `to_rgba_image`); the
 //!   image crate comes with no codecs (choose them in your own dependency).
+//! - `path` (default): the path tracer, the look ([`Look::Path`]) of scenes
+//!   with metal, glass or emitters and of [`Lighting::path_trace`]. Without
+//!   it those frames get the face-shaded look, every material shaded as
+//!   diffuse, and the [`EffectPlan`]'s description says so.
+//! - `effect-kernels` (default): one pixel kernel compiled per set of
+//!   effects, so an effect that is off costs nothing per ray. Without it
+//!   each look has one kernel that tests the effects per pixel: the same
+//!   pixels from far less code, a little slower.
+//!
+//! Firmware that must be small leaves both off (`default-features =
+//! false`), as the repository's `frontends/embedded` does: the path
+//! tracer's kernels and the per-effect copies are most of a render's code.
 
 #![no_std]
 #![cfg_attr(docsrs, feature(doc_cfg))]

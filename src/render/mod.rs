@@ -8,8 +8,8 @@
 //! caller's `&mut [u32]`, counting rays in [`stats`].
 //!
 //! Scenes with metal, glass or emitters ([`plan`] decides, from the
-//! materials the scene's voxels use) get the [`path`] tracer instead of
-//! face shading.
+//! materials the scene's voxels use) get the path tracer (`path`, feature
+//! `path`) instead of face shading.
 //!
 //! One function, `render_pixel`, defines every pixel, so the scalar render,
 //! any crop, and the threaded render over the atomic [`framebuffer`]
@@ -25,6 +25,7 @@ pub(crate) mod memories;
 pub(crate) mod options;
 #[cfg(feature = "rayon")]
 pub(crate) mod parallel;
+#[cfg(feature = "path")]
 pub(crate) mod path;
 pub(crate) mod plan;
 pub(crate) mod rays;

@@ -20,6 +20,9 @@ pub enum Look {
     /// samples and fog: what every all-diffuse scene gets.
     Shaded,
     /// Path tracing through the bounces the scene's materials call for.
+    /// Only with the feature `path`: without it the frames that would be
+    /// path-traced are [`Look::Shaded`], and the plan's description ends
+    /// with `no path tracer (feature path): shaded as diffuse`.
     Path,
 }
 
@@ -49,7 +52,7 @@ impl EffectPlan {
             Look::Flat
         } else if options.debug {
             Look::Debug
-        } else if kinds.any() || options.lighting.path_trace {
+        } else if wants_path(kinds, &options) && cfg!(feature = "path") {
             Look::Path
         } else {
             Look::Shaded
@@ -125,6 +128,19 @@ impl fmt::Display for EffectPlan {
         if o.fog.is_some() {
             item(f, format_args!("fog"))?;
         }
+        // Only a build without the path tracer shades these.
+        if self.look == Look::Shaded && wants_path(self.kinds, o) {
+            item(
+                f,
+                format_args!("no path tracer (feature path): shaded as diffuse"),
+            )?;
+        }
         Ok(())
     }
+}
+
+/// Whether a frame of a scene holding `kinds` under `options` (sanitized)
+/// is one to path-trace.
+fn wants_path(kinds: MaterialKinds, options: &RenderOptions) -> bool {
+    kinds.any() || options.lighting.path_trace
 }

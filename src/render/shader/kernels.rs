@@ -2,8 +2,9 @@
 //! that picks them ([`Shader::dispatch`]): the unshaded look, the debug
 //! view of the boxes a walk crosses, the lit look with its effects as
 //! `const` switches (shadows, occlusion, fog, supersampling), and the path
-//! tracer (whose kernel lives in `render/path/`) for scenes with metal,
-//! glass or emitters.
+//! tracer (whose kernel lives in `render/path/`, feature `path`) for scenes
+//! with metal, glass or emitters. Without the feature `effect-kernels` the
+//! lit look and the path tracer each compile one kernel, every switch on.
 
 use glam::{U8Vec3, UVec3};
 
@@ -11,6 +12,7 @@ use crate::geom::Ray;
 use crate::render::debug_view::{box_color, enters_near_edge};
 use crate::render::memories::Memories;
 use crate::render::options::Background;
+#[cfg(feature = "path")]
 use crate::render::path::{Path, PathSetup};
 use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
@@ -29,8 +31,12 @@ impl<'m> Shader<'_, 'm> {
         if o.debug {
             return job.run(&DebugView(self));
         }
+        #[cfg(feature = "path")]
         if let Some(setup) = &self.path {
             return self.dispatch_path(setup, job);
+        }
+        if !cfg!(feature = "effect-kernels") {
+            return job.run(&Lit::<true, true, true, true, false>(self));
         }
         let set = (
             o.shadows,
@@ -41,7 +47,7 @@ impl<'m> Shader<'_, 'm> {
         macro_rules! lit_kernels {
             ($(($sh:literal, $ao:literal, $fog:literal, $aa:literal)),* $(,)?) => {
                 match set {
-                    $(($sh, $ao, $fog, $aa) => job.run(&Lit::<$sh, $ao, $fog, $aa>(self)),)*
+                    $(($sh, $ao, $fog, $aa) => job.run(&Lit::<$sh, $ao, $fog, $aa, true>(self)),)*
                 }
             };
         }
@@ -67,9 +73,14 @@ impl<'m> Shader<'_, 'm> {
 
     /// Runs `job` with the path tracer compiled for the material kinds
     /// the scene holds.
+    #[cfg(feature = "path")]
     fn dispatch_path<J: FrameJob>(&self, setup: &PathSetup<'m>, job: J) -> J::Output {
-        let kinds = setup.materials.kinds();
         let camera = self.camera;
+        if !cfg!(feature = "effect-kernels") {
+            // The kinds a scene lacks never match: the same pixels.
+            return job.run(&Path::<true, true, true> { camera, setup });
+        }
+        let kinds = setup.materials.kinds();
         macro_rules! path_kernels {
             ($(($g:literal, $m:literal, $e:literal)),* $(,)?) => {
                 match (kinds.glass, kinds.metal, kinds.emissive) {
@@ -90,6 +101,7 @@ impl<'m> Shader<'_, 'm> {
     }
 }
 
+#[cfg(feature = "path")]
 impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Kernel
     for Path<'_, '_, GLASS, METAL, EMIT>
 {
@@ -164,6 +176,12 @@ impl Kernel for DebugView<'_, '_, '_> {
 
 /// The lit look with the chosen effects: shadows, ambient occlusion, fog and
 /// several samples per pixel, each compiled in only when on.
+///
+/// `EXACT`: the frame asks for exactly the effects compiled in (the
+/// dispatch of `effect-kernels` builds). Otherwise an effect runs when it
+/// is compiled in and the frame asks for it, so the kernel with every
+/// switch on gives any frame its pixels: builds without `effect-kernels`
+/// run every frame with that one.
 pub(super) struct Lit<
     's,
     'c,
@@ -172,10 +190,11 @@ pub(super) struct Lit<
     const AO: bool,
     const FOG: bool,
     const AA: bool,
+    const EXACT: bool,
 >(pub(super) &'s Shader<'c, 'm>);
 
-impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kernel
-    for Lit<'_, '_, '_, SHADOWS, AO, FOG, AA>
+impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const EXACT: bool> Kernel
+    for Lit<'_, '_, '_, SHADOWS, AO, FOG, AA, EXACT>
 {
     #[inline]
     fn pixel<'s, S: Scene + ?Sized>(
@@ -187,7 +206,8 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kerne
         memory: &mut Memories<'s>,
     ) -> (u32, RayStats) {
         let camera = self.0.camera;
-        if !AA {
+        // (Occlusion and fog test their settings anyway.)
+        if !(AA && (EXACT || self.0.options.samples > 1)) {
             let ray = camera.get_ray(x, y);
             let (color, stats) = self.sample(scene, &ray, t_start, x, y, 0, memory);
             if stats.primary_hits == 0 {
@@ -227,8 +247,8 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool> Kerne
     }
 }
 
-impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
-    Lit<'_, '_, '_, SHADOWS, AO, FOG, AA>
+impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const EXACT: bool>
+    Lit<'_, '_, '_, SHADOWS, AO, FOG, AA, EXACT>
 {
     /// One camera sample, its walk starting at `t_start`: its color (the
     /// sky's when it misses: `primary_hits` is then 0) and rays.
@@ -252,7 +272,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool>
         };
         let face = face_index(hit.face);
         let mut light = u32::from(shader.light[face]);
-        if SHADOWS && shader.sunlit[face] {
+        if SHADOWS && (EXACT || shader.options.shadows) && shader.sunlit[face] {
             stats.shadow_rays += 1;
             if let Some(shadow) = secondary(ray, &hit, shader.sun) {
                 let blocker = scene.trace_within_with(&shadow, f32::INFINITY, &mut memory.shadow);

@@ -10,29 +10,44 @@
 //! kernels and the dispatch are in [`kernels`].
 //!
 //! Scenes whose voxels use metal, glass or emitters (the [`EffectPlan`]
-//! says) get the path tracer instead, compiled for the material kinds
-//! present; the face-shaded kernels above are untouched by it, so
-//! all-diffuse scenes render as they always did.
+//! says) get the path tracer instead (feature `path`), compiled for the
+//! material kinds present; the face-shaded kernels above are untouched by
+//! it, so all-diffuse scenes render as they always did.
+//!
+//! Without the feature `effect-kernels`, each look has one kernel instead,
+//! the one with every switch on: a switch runs its effect only when the
+//! frame asks for it too, so that kernel gives every frame the pixels of
+//! the frame's own kernel, from one copy of the code.
+
+#[cfg(not(feature = "path"))]
+use core::marker::PhantomData;
 
 use glam::{U8Vec3, Vec3};
 
-use crate::material::{Materials, SceneMaterials};
+#[cfg(feature = "path")]
+use crate::material::Materials;
+use crate::material::SceneMaterials;
 use crate::render::camera::Camera;
 use crate::render::memories::Memories;
 use crate::render::options::{Background, RenderOptions};
+#[cfg(feature = "path")]
 use crate::render::path::PathSetup;
+#[cfg(feature = "path")]
 use crate::render::plan::{EffectPlan, Look};
 use crate::render::shade::{face_weights, pack};
 use crate::render::stats::RayStats;
 use crate::scene::Scene;
 
 mod kernels;
+#[cfg(all(test, feature = "alloc"))]
+mod one_kernel;
 
 /// How wide the debug view's edges are: a fraction of a pixel's footprint
 /// each side of the edge.
 const EDGE_PIXELS: f32 = 0.75;
 
 /// The table of a path-traced frame whose scene has no materials.
+#[cfg(feature = "path")]
 static ALL_DIFFUSE: Materials = Materials::all_diffuse();
 
 /// Everything a frame's pixels need, computed once per frame.
@@ -51,7 +66,11 @@ pub(crate) struct Shader<'c, 'm> {
     /// unit of distance.
     edge: (f32, f32),
     /// The path tracer's setup, when the plan is to path-trace.
+    #[cfg(feature = "path")]
     path: Option<PathSetup<'m>>,
+    /// (Without the path tracer, nothing reads the materials.)
+    #[cfg(not(feature = "path"))]
+    materials: PhantomData<SceneMaterials<'m>>,
 }
 
 impl<'c, 'm> Shader<'c, 'm> {
@@ -63,12 +82,21 @@ impl<'c, 'm> Shader<'c, 'm> {
         camera: &'c Camera,
         materials: Option<SceneMaterials<'m>>,
     ) -> Self {
-        let plan = EffectPlan::new(options, materials);
-        let path = (plan.look == Look::Path).then(|| {
-            let (table, emitters) =
-                materials.map_or((&ALL_DIFFUSE, &[][..]), |m| (m.table, m.emitters));
-            PathSetup::new(&plan.options, table, emitters)
-        });
+        #[cfg(feature = "path")]
+        let path = {
+            let plan = EffectPlan::new(options, materials);
+            (plan.look == Look::Path).then(|| {
+                let (table, emitters) =
+                    materials.map_or((&ALL_DIFFUSE, &[][..]), |m| (m.table, m.emitters));
+                // Voxels of an emitter without emission light nothing: no
+                // kernel samples them (the plan counts no lights).
+                let emitters = if plan.kinds.emissive { emitters } else { &[] };
+                PathSetup::new(&plan.options, table, emitters)
+            })
+        };
+        // (The face-shaded looks shade every material as diffuse.)
+        #[cfg(not(feature = "path"))]
+        let _ = materials;
         let options = options.sanitized();
         let (light, shadowed, sunlit, sun) = face_weights(options.sun);
         Shader {
@@ -83,7 +111,10 @@ impl<'c, 'm> Shader<'c, 'm> {
             } else {
                 (0.0, EDGE_PIXELS * camera.pixel_spread())
             },
+            #[cfg(feature = "path")]
             path,
+            #[cfg(not(feature = "path"))]
+            materials: PhantomData,
         }
     }
 }
