@@ -252,6 +252,7 @@ fn out_dash_refuses_a_terminal() {
         eprintln!("skipped: no pseudo-terminal here");
         return;
     };
+    let terminal = open_terminal(&terminal);
     let dir = scratch("stdout-tty");
     two_tiles(&dir);
     let out = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
@@ -263,10 +264,36 @@ fn out_dash_refuses_a_terminal() {
     refused(&out, &["terminal", "--out FILE"]);
 }
 
-/// The terminal end of a new pseudo-terminal (its other end is leaked:
-/// the test is short).
+/// A terminal named by its path (`/dev/tty`, here a pseudo-terminal's
+/// `/dev/pts/N`) is refused as a render refuses it: no PNG bytes on it.
 #[cfg(unix)]
-fn pseudo_terminal() -> Option<std::fs::File> {
+#[test]
+fn out_a_terminal_by_its_path_is_refused() {
+    let Some(terminal) = pseudo_terminal() else {
+        eprintln!("skipped: no pseudo-terminal here");
+        return;
+    };
+    let dir = scratch("path-tty");
+    two_tiles(&dir);
+    let terminal = terminal.to_str().unwrap();
+    let out = stitch_in(&dir, &["t-0.png", "t-1.png", "--out", terminal]);
+    refused(&out, &["terminal", terminal, "--out FILE"]);
+}
+
+/// Opens the terminal at `path` for reading and writing.
+#[cfg(unix)]
+fn open_terminal(path: &Path) -> std::fs::File {
+    std::fs::OpenOptions::new()
+        .read(true)
+        .write(true)
+        .open(path)
+        .unwrap()
+}
+
+/// The path of the terminal end of a new pseudo-terminal (its other end is
+/// leaked, so that the terminal stays: the test is short).
+#[cfg(unix)]
+fn pseudo_terminal() -> Option<PathBuf> {
     #[allow(unsafe_code)]
     // SAFETY: plain libc calls on a descriptor this function owns; the
     // name buffer is large and NUL-terminated by ptsname_r on success.
@@ -283,11 +310,7 @@ fn pseudo_terminal() -> Option<std::fs::File> {
             .to_string_lossy()
             .into_owned()
     };
-    std::fs::OpenOptions::new()
-        .read(true)
-        .write(true)
-        .open(name)
-        .ok()
+    Some(PathBuf::from(name))
 }
 
 /// SIGTERM while the stitch waits on a part (a FIFO no one writes): exit
