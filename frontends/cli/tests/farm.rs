@@ -390,3 +390,24 @@ fn tasks_split_an_animation_into_runs_of_frames() {
     args.extend(["--tasks", "3", "--task-index", "0"]);
     assert_refused(&voxtrace(&args, &[]), &["--frames"]);
 }
+
+/// A part is a PNG streamed by the one encoder: the memory estimate of a
+/// 1x1 grid's tile is a plain PNG render's of the same frame (the frame's
+/// share quoted by the refusal), not that plus a copy of the pixels.
+#[test]
+fn a_tile_is_budgeted_as_a_png_render_of_its_size() {
+    let dir = scratch("budget");
+    let frame_share = |extra: &[&str]| {
+        let args = with(&with(SCENE, &["--max-memory", "1K"]), extra);
+        let result = voxtrace(&args, &[]);
+        assert_refused(&result, &["and the frame "]);
+        let text = stderr(&result);
+        let share = text.split("and the frame ").nth(1).unwrap();
+        share.split(':').next().unwrap().to_string()
+    };
+    let part = dir.join("part-%t.png");
+    let part = part.to_str().unwrap();
+    let whole = dir.join("whole.png");
+    let tile = frame_share(&["--tiles", "1x1", "--tile-index", "0", "--out", part]);
+    assert_eq!(tile, frame_share(&["--out", whole.to_str().unwrap()]));
+}
