@@ -134,7 +134,7 @@ pub use io::golden::{Golden, GoldenError, UPDATE_GOLDEN};
 #[cfg(feature = "image")]
 pub use io::image::{from_rgba_image, to_rgba_image};
 #[cfg(feature = "png")]
-pub use io::png::{decode_png, encode_png, read_png, write_png};
+pub use io::png::{decode_png, encode_png, encode_png_with_text, read_png, write_png};
 #[cfg(feature = "std")]
 pub use render::framebuffer::Framebuffer;
 #[cfg(feature = "rayon")]

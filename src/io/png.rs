@@ -15,6 +15,21 @@ pub fn encode_png<W: Write>(
     height: u32,
     pixels: &[u32],
 ) -> Result<(), png::EncodingError> {
+    encode_png_with_text(writer, width, height, pixels, &[])
+}
+
+/// [`encode_png`], with a `tEXt` chunk for each `(keyword, text)` of `text`
+/// after the header, in order: the same image bytes, streamed the same
+/// way. Fails if `pixels` is shorter than the image, or if a keyword is
+/// not 1 to 79 Latin-1 characters or a text is not Latin-1 (what `tEXt`
+/// holds).
+pub fn encode_png_with_text<W: Write>(
+    writer: W,
+    width: u32,
+    height: u32,
+    pixels: &[u32],
+    text: &[(&str, &str)],
+) -> Result<(), png::EncodingError> {
     let len = width as usize * height as usize;
     let pixels = pixels.get(..len).ok_or_else(|| {
         png::EncodingError::IoError(std::io::Error::new(
@@ -22,7 +37,7 @@ pub fn encode_png<W: Write>(
             std::format!("{len} pixels needed, {} given", pixels.len()),
         ))
     })?;
-    encode_rgba8(writer, width, height, pixels.iter().copied())
+    encode_rgba8(writer, width, height, pixels.iter().copied(), text)
 }
 
 /// Bytes of the PNG chunks the encoder writes the image data in (and
@@ -33,16 +48,21 @@ const CHUNK: usize = 1 << 18;
 /// The one PNG encoder: RGBA, 8 bits per channel, the `width * height`
 /// packed pixels from `pixels`. The image data is filtered and compressed
 /// as it streams through, a few rows at a time: the encoder never holds
-/// the image, or its compressed bytes, whole.
+/// the image, or its compressed bytes, whole. `text` becomes `tEXt`
+/// chunks after the header.
 pub(crate) fn encode_rgba8<W: Write>(
     writer: W,
     width: u32,
     height: u32,
     pixels: impl Iterator<Item = u32>,
+    text: &[(&str, &str)],
 ) -> Result<(), png::EncodingError> {
     let mut encoder = png::Encoder::new(writer, width, height);
     encoder.set_color(png::ColorType::Rgba);
     encoder.set_depth(png::BitDepth::Eight);
+    for (keyword, text) in text {
+        encoder.add_text_chunk((*keyword).into(), (*text).into())?;
+    }
     let mut writer = encoder.write_header()?;
     let mut stream = writer.stream_writer_with_size(CHUNK)?;
     // The pixels' bytes in batches on the stack: no allocation per image.
@@ -109,6 +129,6 @@ impl Framebuffer {
     /// Encodes the image as a PNG into `writer` (feature `png`).
     pub fn encode_png<W: Write>(&self, writer: W) -> Result<(), png::EncodingError> {
         let pixels = self.pixels().iter().map(|p| p.load(Ordering::Relaxed));
-        encode_rgba8(writer, self.width(), self.height(), pixels)
+        encode_rgba8(writer, self.width(), self.height(), pixels, &[])
     }
 }

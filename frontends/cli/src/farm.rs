@@ -9,7 +9,7 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use voxtrace::{Camera, RenderOptions};
-use voxtrace_cli::atomic::{exit_with_error, remove_on_signal, AtomicFile};
+use voxtrace_cli::atomic::{exit_with_error, remove_on_signal, same_file};
 use voxtrace_cli::part::{fnv1a64, settings_text, write_part, Placement};
 use voxtrace_cli::stitch::{list, stitch};
 use voxtrace_cli::tiles::{frames_for_task, tile_name, Grid, TaskIndex};
@@ -243,11 +243,12 @@ fn run_stitch(args: &StitchArgs) -> Result<(), String> {
     // temporary file and leaves --out as it was.
     remove_on_signal()?;
     let failed = |e: String| format!("cannot write --out {}: {e}", out.display());
-    // Created first, so that a bad --out fails before the parts are read.
+    // Created first, so that a bad --out fails before the parts are read,
+    // and as a render creates its own: a terminal is refused alike.
     let file = if to_stdout {
         None
     } else {
-        Some(AtomicFile::create(out).map_err(|e| failed(e.to_string()))?)
+        Some(output::create(out)?)
     };
     let frame = stitch(&args.parts, args.allow_partial, memory::available_memory())?;
     // Encoded as a render encodes its frame: the same file.
@@ -279,7 +280,8 @@ fn run_stitch(args: &StitchArgs) -> Result<(), String> {
 /// their device and inode are.
 fn refuse_a_part_as_out(out: &Path, to_stdout: bool, parts: &[PathBuf]) -> Result<(), String> {
     let target = if to_stdout {
-        stdout_metadata()
+        // What standard output is open on, if it is open.
+        output::stdout().and_then(|out| out.metadata()).ok()
     } else {
         std::fs::metadata(out).ok()
     };
@@ -300,29 +302,4 @@ fn refuse_a_part_as_out(out: &Path, to_stdout: bool, parts: &[PathBuf]) -> Resul
         }
     }
     Ok(())
-}
-
-/// What standard output is open on, if it is open.
-#[cfg(unix)]
-fn stdout_metadata() -> Option<std::fs::Metadata> {
-    use std::os::fd::AsFd;
-    let fd = std::io::stdout().as_fd().try_clone_to_owned().ok()?;
-    std::fs::File::from(fd).metadata().ok()
-}
-
-#[cfg(unix)]
-fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
-    use std::os::unix::fs::MetadataExt;
-    (a.dev(), a.ino()) == (b.dev(), b.ino())
-}
-
-/// Elsewhere std gives no file identity: no check.
-#[cfg(not(unix))]
-fn stdout_metadata() -> Option<std::fs::Metadata> {
-    None
-}
-
-#[cfg(not(unix))]
-fn same_file(_: &std::fs::Metadata, _: &std::fs::Metadata) -> bool {
-    false
 }

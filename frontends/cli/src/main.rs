@@ -223,8 +223,8 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     };
     let pixels = u64::from(region.width) * u64::from(region.height);
     let encoder = match &tile {
-        // A part is PNG with its placement: write_part copies the pixels.
-        Some(_) => u128::from(pixels) * 4,
+        // A part is a PNG with its placement, streamed by the same encoder.
+        Some(_) => output::encoder_bytes(output::Format::Png, region.width, region.height, true),
         None => {
             let alpha = options.background == Background::Transparent;
             output::encoder_bytes(format, region.width, region.height, alpha)
@@ -237,7 +237,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     let first_file = if to_stdout {
         None
     } else {
-        Some(create(&paths[0])?)
+        Some(output::create(&paths[0])?)
     };
     let job = Job {
         args,
@@ -263,21 +263,6 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
         .iter()
         .for_each(|note| say!("note: {}", escape_controls(note)));
     Ok(())
-}
-
-/// A temporary file beside `path` that replaces it once committed (or the
-/// special file itself, written in place, unless it is a terminal).
-fn create(path: &Path) -> Result<AtomicFile, String> {
-    let file = AtomicFile::create(path)
-        .map_err(|e| format!("cannot write --out {}: {e}", path.display()))?;
-    if file.is_terminal() {
-        return Err(format!(
-            "{} ({}); pass --out FILE",
-            output::TERMINAL,
-            path.display()
-        ));
-    }
-    Ok(file)
 }
 
 /// `--export-vox`: the terrain as a `.vox` file.
@@ -334,7 +319,7 @@ impl Job<'_> {
         }
         let mut file = match first {
             Some(file) => file,
-            None => create(path)?,
+            None => output::create(path)?,
         };
         match self.tile {
             Some(tile) => farm::write_tile(&mut file, tile, &pixels),

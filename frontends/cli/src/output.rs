@@ -7,6 +7,7 @@ use std::io::{BufWriter, Write};
 use std::path::Path;
 
 use clap::ValueEnum;
+use voxtrace_cli::atomic::AtomicFile;
 
 /// The file format `--out` asks for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -44,6 +45,23 @@ pub fn is_stdout(path: &Path) -> bool {
 
 /// What refuses a binary image for a terminal.
 pub const TERMINAL: &str = "refusing to write a binary image to a terminal";
+
+/// Creates the file an image is written to at `path`, as every output
+/// (a render's frames, a part, a stitch) is created: a temporary file
+/// beside `path` that replaces it once committed, or the special file
+/// itself, written in place, unless it is a terminal (reached by its path,
+/// `/dev/tty`), refused as standard output is.
+///
+/// # Errors
+/// One line: why `path` cannot be written, or that it is a terminal.
+pub fn create(path: &Path) -> Result<AtomicFile, String> {
+    let file = AtomicFile::create(path)
+        .map_err(|e| format!("cannot write --out {}: {e}", path.display()))?;
+    if file.is_terminal() {
+        return Err(format!("{TERMINAL} ({}); pass --out FILE", path.display()));
+    }
+    Ok(file)
+}
 
 /// Checks, before any work, that standard output can take the image: it
 /// was open when the process started (`>&-` closes it, and the image would

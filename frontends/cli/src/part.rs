@@ -181,7 +181,9 @@ pub struct Part {
     pub pixels: Vec<u32>,
 }
 
-/// Encodes a part as an RGBA8 PNG with its two text chunks.
+/// Encodes a part as an RGBA8 PNG with its two text chunks, through the
+/// core's streaming encoder (the one every PNG goes through): a few rows
+/// of memory, whatever the tile's size.
 ///
 /// # Errors
 /// The encoder's message, or a pixel count that is not the rectangle's.
@@ -192,26 +194,15 @@ pub fn write_part<W: Write>(
     pixels: &[u32],
 ) -> Result<(), String> {
     let (width, height) = (placement.rect.width, placement.rect.height);
-    if pixels.len() != width as usize * height as usize {
+    if pixels.len() as u64 != u64::from(width) * u64::from(height) {
         return Err(format!(
             "{} pixels for a {width}x{height} tile",
             pixels.len()
         ));
     }
-    let mut encoder = png::Encoder::new(writer, width, height);
-    encoder.set_color(png::ColorType::Rgba);
-    encoder.set_depth(png::BitDepth::Eight);
-    let text = |e: png::EncodingError| e.to_string();
-    encoder
-        .add_text_chunk(PART_KEY.to_string(), placement.to_text())
-        .map_err(text)?;
-    encoder
-        .add_text_chunk(SETTINGS_KEY.to_string(), settings.to_string())
-        .map_err(text)?;
-    let mut png = encoder.write_header().map_err(text)?;
-    let bytes: Vec<u8> = pixels.iter().flat_map(|p| p.to_ne_bytes()).collect();
-    png.write_image_data(&bytes).map_err(text)?;
-    png.finish().map_err(text)
+    let placement = placement.to_text();
+    let text = [(PART_KEY, placement.as_str()), (SETTINGS_KEY, settings)];
+    voxtrace::encode_png_with_text(writer, width, height, pixels, &text).map_err(|e| e.to_string())
 }
 
 /// Decodes a part written by [`write_part`], checking that its chunks are
@@ -266,7 +257,13 @@ pub fn read_part<R: BufRead + Seek>(reader: R) -> Result<Part, String> {
         ));
     }
     // Row by row into the pixels, reserved fallibly: no copy of the tile.
-    let area = width as usize * height as usize;
+    let area = (width as usize)
+        .checked_mul(height as usize)
+        .ok_or_else(|| {
+            format!(
+                "cannot decode a {width}x{height} tile: more pixels than this machine addresses"
+            )
+        })?;
     let mut pixels: Vec<u32> = Vec::new();
     pixels.try_reserve_exact(area).map_err(|_| {
         format!(
@@ -303,5 +300,61 @@ mod tests {
         assert_eq!(fnv1a64(b""), 0xcbf2_9ce4_8422_2325);
         assert_eq!(fnv1a64(b"a"), 0xaf63_dc4c_8601_ec8c);
         assert_eq!(fnv1a64(b"foobar"), 0x8594_4171_f739_67e8);
+    }
+
+    /// The chunks of a PNG but its `tEXt` ones, signature first.
+    fn without_text(png: &[u8]) -> Vec<u8> {
+        let mut kept = png[..8].to_vec();
+        let mut at = 8;
+        while at < png.len() {
+            let len = u32::from_be_bytes(png[at..at + 4].try_into().unwrap()) as usize;
+            let chunk = &png[at..at + 12 + len];
+            if &chunk[4..8] != b"tEXt" {
+                kept.extend_from_slice(chunk);
+            }
+            at += 12 + len;
+        }
+        kept
+    }
+
+    #[test]
+    fn a_part_is_the_cores_streamed_png_with_its_two_text_chunks() {
+        // Noise, so that the compressed image spans several of the
+        // streaming encoder's IDAT chunks (a whole-image encoder writes one).
+        let (width, height) = (300, 300);
+        let mut state = 0x9e37_79b9_u32;
+        let pixels: Vec<u32> = (0..width * height)
+            .map(|_| {
+                state ^= state << 13;
+                state ^= state >> 17;
+                state ^= state << 5;
+                state
+            })
+            .collect();
+        let placement = Placement {
+            frame_width: width,
+            frame_height: height,
+            grid: Grid::new(1, 1).unwrap(),
+            tile: 0,
+            rect: Rect {
+                x: 0,
+                y: 0,
+                width,
+                height,
+            },
+            frame_number: 0,
+            hash: fnv1a64(b"settings"),
+        };
+        let mut part = Vec::new();
+        write_part(&mut part, &placement, "settings", &pixels).unwrap();
+        let mut plain = Vec::new();
+        voxtrace::encode_png(&mut plain, width, height, &pixels).unwrap();
+        // Compared whole, but not printed: a megabyte of bytes says nothing.
+        assert!(
+            without_text(&part) == plain,
+            "the part's image chunks are not the core encoder's"
+        );
+        let read = read_part(std::io::Cursor::new(&part)).unwrap();
+        assert_eq!((read.placement, read.pixels), (placement, pixels));
     }
 }

@@ -1,7 +1,10 @@
 //! Nothing is lost: a render that fails, or is stopped by any signal that
 //! would end it, leaves the previous `--out` byte for byte as it was, and no
 //! temporary file behind; no file left by an earlier run, and no long name,
-//! keeps a run from writing; a directory as `--out` fails before the build.
+//! keeps a run from writing. (A directory as `--out` fails before the
+//! build: `hostile.rs`.)
+
+mod common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -9,12 +12,7 @@ use std::time::{Duration, Instant};
 
 /// A fresh, empty directory of its own for each test.
 fn fresh_dir(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("atomic")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    common::run::fresh_dir("atomic", name)
 }
 
 fn entries(dir: &Path) -> Vec<String> {
@@ -311,42 +309,4 @@ fn names_up_to_the_file_systems_limit_are_written() {
         assert_eq!(&std::fs::read(&out).unwrap()[1..4], b"PNG");
     }
     assert_eq!(entries(&dir).len(), 2, "{:?}", entries(&dir));
-}
-
-#[test]
-fn a_directory_as_out_fails_before_the_build() {
-    let dir = fresh_dir("directory");
-    std::fs::create_dir(dir.join("existing")).unwrap();
-    #[cfg(unix)]
-    std::os::unix::fs::symlink("existing", dir.join("link")).unwrap();
-    let outs = ["existing", "existing/", "missing/", "link", "existing/."];
-    for name in outs {
-        let out = format!("{}/{name}", dir.display());
-        if name == "link" && cfg!(not(unix)) {
-            continue;
-        }
-        // No --seed: a run that went on to build would print its seed
-        // first; the scene takes minutes to build in a debug binary.
-        let started = Instant::now();
-        let result = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
-            .args(["--size", "400", "--width", "64", "--height", "36", "--out"])
-            .arg(&out)
-            .output()
-            .unwrap();
-        let stderr = String::from_utf8_lossy(&result.stderr);
-        println!("--out {name}: {:.2?}", started.elapsed());
-        assert_eq!(result.status.code(), Some(2), "{name}: {stderr}");
-        assert_eq!(stderr.trim_end().lines().count(), 1, "{name}: {stderr}");
-        assert!(
-            stderr.starts_with(&format!("error: cannot write --out {out}: "))
-                && stderr.contains("directory"),
-            "{name}: {stderr}"
-        );
-    }
-    let mut expected = vec!["existing"];
-    if cfg!(unix) {
-        expected.push("link");
-    }
-    assert_eq!(entries(&dir), expected);
-    assert!(entries(&dir.join("existing")).is_empty());
 }

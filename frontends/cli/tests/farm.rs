@@ -7,7 +7,7 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use common::run::{scratch_in, stderr};
+use common::run::{assert_refused, fresh_dir, stderr};
 
 fn voxtrace(args: &[&str], env: &[(&str, &str)]) -> Output {
     let mut command = Command::new(env!("CARGO_BIN_EXE_voxtrace"));
@@ -20,26 +20,11 @@ fn voxtrace(args: &[&str], env: &[(&str, &str)]) -> Output {
 
 /// A fresh empty directory for one test.
 fn scratch(name: &str) -> PathBuf {
-    let dir = scratch_in("farm", name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    fresh_dir("farm", name)
 }
 
 fn ok(out: &Output) {
     assert!(out.status.success(), "{}", stderr(out));
-}
-
-/// Exit 2 and exactly one line on stderr, starting with `error:` and
-/// containing each of `needles`.
-fn refused(out: &Output, needles: &[&str]) {
-    let text = stderr(out);
-    assert_eq!(out.status.code(), Some(2), "{text}");
-    assert_eq!(text.lines().count(), 1, "{text}");
-    assert!(text.starts_with("error: "), "{text}");
-    for needle in needles {
-        assert!(text.contains(needle), "{needle:?} not in {text}");
-    }
 }
 
 /// A small terrain frame: 97x61 (prime widths and heights: no grid divides
@@ -178,15 +163,15 @@ fn the_tile_index_can_come_from_the_environment() {
     let by_number = render_tile(&scratch("env-number"), "4x4", 7, &[]);
     assert!(std::fs::read(dir.join("t-07.png")).unwrap() == std::fs::read(by_number).unwrap());
 
-    refused(
+    assert_refused(
         &voxtrace(&args, &[]),
         &["env:TASK", "TASK is not set", "0 to 15"],
     );
-    refused(
+    assert_refused(
         &voxtrace(&args, &[("TASK", "16")]),
         &["out of range", "0 to 15"],
     );
-    refused(&voxtrace(&args, &[("TASK", "x1")]), &["'x1'", "0 to 15"]);
+    assert_refused(&voxtrace(&args, &[("TASK", "x1")]), &["'x1'", "0 to 15"]);
 }
 
 #[test]
@@ -243,28 +228,28 @@ fn stitch_refuses_parts_that_do_not_make_one_frame() {
     std::fs::write(&out, b"the old file").unwrap();
     let p = |i: usize| parts[i].clone();
 
-    refused(
+    assert_refused(
         &stitch(&[p(0), p(1), p(3)], &out, &[]),
         &["missing 1 of the 4 tiles of the 2x2 grid (0 to 3): 2"],
     );
-    refused(
+    assert_refused(
         &stitch(&[p(0), p(1), p(1), p(2), p(3)], &out, &[]),
         &["duplicate tile 1"],
     );
 
     let other_dir = scratch("refusals-other");
     let other = render_tiles(&other_dir, "2x2", &["--seed", "9"]);
-    refused(
+    assert_refused(
         &stitch(&[p(0), p(1), other[2].clone(), p(3)], &out, &[]),
         &["different settings", "--seed: 3 against 9"],
     );
     let shadows = render_tiles(&scratch("refusals-shadows"), "2x2", &["--shadows"]);
-    refused(
+    assert_refused(
         &stitch(&[p(0), shadows[1].clone(), p(2), p(3)], &out, &[]),
         &["different settings", "--shadows: false against true"],
     );
     let coarse = render_tiles(&scratch("refusals-coarse"), "1x2", &[]);
-    refused(
+    assert_refused(
         &stitch(&[p(0), p(1), coarse[1].clone()], &out, &[]),
         &["overlap", "2x2 against 1x2"],
     );
@@ -272,17 +257,17 @@ fn stitch_refuses_parts_that_do_not_make_one_frame() {
     let cut = dir.join("cut.png");
     let bytes = std::fs::read(p(3)).unwrap();
     std::fs::write(&cut, &bytes[..bytes.len() - 20]).unwrap();
-    refused(
+    assert_refused(
         &stitch(&[p(0), p(1), p(2), cut.clone()], &out, &[]),
         &["cut.png", "corrupt"],
     );
     let full = dir.join("full.png");
     std::fs::write(&full, full_render(&other_dir, &[])).unwrap();
-    refused(
+    assert_refused(
         &stitch(&[full], &out, &[]),
         &["full.png", "not a voxtrace tile"],
     );
-    refused(
+    assert_refused(
         &stitch(&[dir.join("absent.png")], &out, &[]),
         &["cannot read", "absent.png"],
     );
@@ -306,22 +291,22 @@ fn bad_farm_arguments_exit_2_naming_the_range() {
     let out = scratch("args").join("x-%t.png");
     let out = out.to_str().unwrap();
     let run = |extra: &[&str]| voxtrace(&with(&with(SCENE, extra), &["--out", out]), &[]);
-    refused(&run(&["--tiles", "4x4"]), &["--tile-index", "0 to 15"]);
-    refused(&run(&["--tile-index", "3"]), &["--tiles"]);
-    refused(
+    assert_refused(&run(&["--tiles", "4x4"]), &["--tile-index", "0 to 15"]);
+    assert_refused(&run(&["--tile-index", "3"]), &["--tiles"]);
+    assert_refused(
         &run(&["--tiles", "4x4", "--tile-index", "16"]),
         &["out of range", "0 to 15"],
     );
-    refused(&run(&["--tiles", "4", "--tile-index", "0"]), &["'4'"]);
-    refused(
+    assert_refused(&run(&["--tiles", "4", "--tile-index", "0"]), &["'4'"]);
+    assert_refused(
         &run(&["--tiles", "98x1", "--tile-index", "0"]),
         &["98x1", "97x61"],
     );
-    refused(
+    assert_refused(
         &run(&["--tiles", "2x2", "--tile-index", "0", "--region", "0,0,5,5"]),
         &["--region"],
     );
-    refused(&run(&["--tiles", "2x2", "--tile-index", "-1"]), &["-1"]);
+    assert_refused(&run(&["--tiles", "2x2", "--tile-index", "-1"]), &["-1"]);
     let bmp = voxtrace(
         &with(
             SCENE,
@@ -329,7 +314,7 @@ fn bad_farm_arguments_exit_2_naming_the_range() {
         ),
         &[],
     );
-    refused(&bmp, &["PNG", "x.bmp"]);
+    assert_refused(&bmp, &["PNG", "x.bmp"]);
     let unseeded = voxtrace(
         &[
             "--size",
@@ -343,16 +328,16 @@ fn bad_farm_arguments_exit_2_naming_the_range() {
         ],
         &[],
     );
-    refused(&unseeded, &["--seed"]);
+    assert_refused(&unseeded, &["--seed"]);
     let unpaired = voxtrace(&["--size", "30", "--tile-index", "0", "--out", out], &[]);
-    refused(&unpaired, &["--tile-index needs --tiles"]);
+    assert_refused(&unpaired, &["--tile-index needs --tiles"]);
 
-    refused(&voxtrace(&["stitch", "--out", out], &[]), &["PART"]);
-    refused(
+    assert_refused(&voxtrace(&["stitch", "--out", out], &[]), &["PART"]);
+    assert_refused(
         &voxtrace(&["stitch", "a.png", "--bogus"], &[]),
         &["--bogus"],
     );
-    refused(&voxtrace(&["stitch", "a.png"], &[]), &["--out"]);
+    assert_refused(&voxtrace(&["stitch", "a.png"], &[]), &["--out"]);
     let help = voxtrace(&["stitch", "--help"], &[]);
     assert!(
         help.status.success() && String::from_utf8_lossy(&help.stdout).contains("--allow-partial")
@@ -396,12 +381,33 @@ fn tasks_split_an_animation_into_runs_of_frames() {
     let mut args = SCENE.to_vec();
     args.extend(["--frames", "7", "--tasks", "3", "--task-index", "3"]);
     args.extend(["--out", &parts_out]);
-    refused(&voxtrace(&args, &[]), &["--task-index 3", "0 to 2"]);
+    assert_refused(&voxtrace(&args, &[]), &["--task-index 3", "0 to 2"]);
     let mut args = SCENE.to_vec();
     args.extend(["--frames", "2", "--tasks", "3", "--task-index", "0"]);
     args.extend(["--out", &parts_out]);
-    refused(&voxtrace(&args, &[]), &["3 tasks for 2 frames"]);
+    assert_refused(&voxtrace(&args, &[]), &["3 tasks for 2 frames"]);
     let mut args = SCENE.to_vec();
     args.extend(["--tasks", "3", "--task-index", "0"]);
-    refused(&voxtrace(&args, &[]), &["--frames"]);
+    assert_refused(&voxtrace(&args, &[]), &["--frames"]);
+}
+
+/// A part is a PNG streamed by the one encoder: the memory estimate of a
+/// 1x1 grid's tile is a plain PNG render's of the same frame (the frame's
+/// share quoted by the refusal), not that plus a copy of the pixels.
+#[test]
+fn a_tile_is_budgeted_as_a_png_render_of_its_size() {
+    let dir = scratch("budget");
+    let frame_share = |extra: &[&str]| {
+        let args = with(&with(SCENE, &["--max-memory", "1K"]), extra);
+        let result = voxtrace(&args, &[]);
+        assert_refused(&result, &["and the frame "]);
+        let text = stderr(&result);
+        let share = text.split("and the frame ").nth(1).unwrap();
+        share.split(':').next().unwrap().to_string()
+    };
+    let part = dir.join("part-%t.png");
+    let part = part.to_str().unwrap();
+    let whole = dir.join("whole.png");
+    let tile = frame_share(&["--tiles", "1x1", "--tile-index", "0", "--out", part]);
+    assert_eq!(tile, frame_share(&["--out", whole.to_str().unwrap()]));
 }

@@ -14,7 +14,8 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::limits::{check_contract, run_limited, run_limited_within, scratch, tools_present};
+use common::limits::{check_contract, run_limited, run_limited_within, tools_present};
+use common::run::fresh_dir;
 use common::vox_bytes::{hostile_files, small_scene};
 
 /// A real MagicaVoxel file by another author (see its SOURCES.md), when the
@@ -138,7 +139,7 @@ fn hostile_inputs_end_with_exit_0_or_2_and_one_line() {
         println!("skipped: prlimit or timeout is absent");
         return;
     }
-    let dir = scratch("hostile");
+    let dir = fresh_dir("hostile", "files");
     let out = dir.join("out.png");
     let mut cases = vox_cases(write_files(&dir), &out);
     // A sample of truncations here; every offset in the ignored test.
@@ -164,7 +165,7 @@ fn hostile_inputs_end_with_exit_0_or_2_and_one_line() {
 
 #[test]
 fn the_bombs_are_refused_by_the_count_naming_the_limit() {
-    let dir = scratch("hostile-bombs");
+    let dir = fresh_dir("hostile", "bombs");
     let out = dir.join("out.png");
     for (name, path) in write_files(&dir)
         .into_iter()
@@ -193,7 +194,7 @@ fn the_bombs_are_refused_by_the_count_naming_the_limit() {
 /// the forged `error:` after it stays inside the one line.
 #[test]
 fn a_newline_in_a_quoted_value_stays_on_the_error_line() {
-    let dir = scratch("hostile-newlines");
+    let dir = fresh_dir("hostile", "newlines");
     let forged = "x\nerror: forged";
     let out = dir.join("out.png");
     let cases: Vec<(&str, Vec<String>)> = vec![
@@ -238,16 +239,23 @@ fn a_newline_in_a_quoted_value_stays_on_the_error_line() {
 }
 
 /// A bad `--out` fails at once, before a build of seconds: a directory
-/// (by its kind, through a link, or by a trailing `/`) and a missing
-/// folder. Within 1 s for the optimized binary (`.ci/run`), which needs
+/// (by its kind, through a link, or by a trailing `/` or `/.`) and a
+/// missing folder; nothing is left behind, not even a temporary file. Within 1 s for the optimized binary (`.ci/run`), which needs
 /// seconds to build this scene; the debug one's times are printed.
 #[test]
 fn a_bad_out_fails_before_the_build() {
-    let dir = scratch("hostile-out");
+    let dir = fresh_dir("hostile", "out");
     std::fs::create_dir(dir.join("folder")).unwrap();
     #[cfg(unix)]
     std::os::unix::fs::symlink("folder", dir.join("link")).unwrap();
-    for name in ["folder", "folder/", "link", "new/", "missing/out.png"] {
+    for name in [
+        "folder",
+        "folder/",
+        "folder/.",
+        "link",
+        "new/",
+        "missing/out.png",
+    ] {
         let out = dir.join(name);
         if !cfg!(unix) && name == "link" {
             continue;
@@ -280,6 +288,17 @@ fn a_bad_out_fails_before_the_build() {
         .unwrap()
         .next()
         .is_none());
+    let mut left: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|entry| entry.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    left.sort();
+    let expected: &[&str] = if cfg!(unix) {
+        &["folder", "link"]
+    } else {
+        &["folder"]
+    };
+    assert_eq!(left, expected);
 }
 
 #[test]
@@ -311,7 +330,7 @@ fn every_truncation_under_limits() {
         println!("skipped: prlimit or timeout is absent");
         return;
     }
-    let dir = scratch("hostile-every");
+    let dir = fresh_dir("hostile", "every");
     let out = dir.join("out.png");
     let mut cuts = truncations("small", &small_scene(), 1, &dir);
     if let Some(real) = real_file() {
@@ -329,8 +348,9 @@ fn every_truncation_under_limits() {
 
 /// Frames of 81 million pixels in each writer's way (PNG, RGBA and RGB
 /// BMP, TGA with its own copy, PPM), and an octree the user let past the
-/// estimate (`--max-memory 1T`, with a random seed): each fits in the
-/// 1 GiB or fails with the one line; never an abort or a panic. Seconds
+/// estimate (`--max-memory 1T`, with a random seed): each image is
+/// written within the 1 GiB (exit 0), the octree fails with the one line
+/// (exit 2); never an abort or a panic. Seconds
 /// of work each (a minute's limit catches hangs): `.ci/run` runs it
 /// optimized.
 #[test]
@@ -340,8 +360,9 @@ fn big_frames_under_limits() {
         println!("skipped: prlimit or timeout is absent");
         return;
     }
-    let dir = scratch("hostile-big");
-    let mut cases: Vec<(String, Vec<String>)> = Vec::new();
+    let dir = fresh_dir("hostile", "big");
+    // Each case with the exit it must end with.
+    let mut cases: Vec<(String, Vec<String>, i32)> = Vec::new();
     let formats = [
         ("png", "transparent"),
         ("bmp", "transparent"),
@@ -356,20 +377,26 @@ fn big_frames_under_limits() {
         let args = "--flat --width 9000 --height 9000 --size 1 --seed 1 --background";
         let mut all: Vec<String> = args.split(' ').map(String::from).collect();
         all.extend([background.into(), "--out".into(), out.display().to_string()]);
-        cases.push((format!("9000x9000 {background} .{ext}"), all));
+        cases.push((format!("9000x9000 {background} .{ext}"), all, 0));
     }
     let octree = "--max-memory 1T --size 100000 --width 16 --height 9";
     let mut all: Vec<String> = octree.split(' ').map(String::from).collect();
     all.extend(["--out".into(), dir.join("octree.png").display().to_string()]);
-    cases.push((octree.into(), all));
+    cases.push((octree.into(), all, 2));
     let count = cases.len();
     let failures: Vec<String> = cases
         .into_iter()
-        .filter_map(|(name, args)| {
+        .filter_map(|(name, args, code)| {
             let ended = run_limited_within(&args, std::time::Duration::from_secs(60));
             println!("{name}: exit {:?} in {:.2?}", ended.code, ended.elapsed);
             let _ = std::fs::remove_dir_all(&dir).and_then(|()| std::fs::create_dir(&dir));
-            check_contract(&name, &ended).err()
+            match check_contract(&name, &ended) {
+                Ok(()) if ended.code != Some(code) => Some(format!(
+                    "{name}: exit {:?}, not {code}: {}",
+                    ended.code, ended.stderr
+                )),
+                result => result.err(),
+            }
         })
         .collect();
     assert!(

@@ -10,16 +10,13 @@ use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 use common::limits::{check_contract, run_limited, tools_present};
-use common::run::{scratch_in, stderr};
+use common::run::{assert_refused, fresh_dir, stderr};
 use voxtrace_cli::part::{fnv1a64, write_part, Placement};
 use voxtrace_cli::tiles::Grid;
 
 /// A fresh empty directory for one test.
 fn scratch(name: &str) -> PathBuf {
-    let dir = scratch_in("stitch", name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    fresh_dir("stitch", name)
 }
 
 /// `voxtrace stitch ARGS` run in `dir`.
@@ -30,18 +27,6 @@ fn stitch_in(dir: &Path, args: &[&str]) -> Output {
         .current_dir(dir)
         .output()
         .expect("the binary runs")
-}
-
-/// Exit 2 and exactly one line on stderr, starting with `error:` and
-/// containing each of `needles`.
-fn refused(out: &Output, needles: &[&str]) {
-    let text = stderr(out);
-    assert_eq!(out.status.code(), Some(2), "{text}");
-    assert_eq!(text.lines().count(), 1, "{text}");
-    assert!(text.starts_with("error: "), "{text}");
-    for needle in needles {
-        assert!(text.contains(needle), "{needle:?} not in {text}");
-    }
 }
 
 const SETTINGS: &str = "voxtrace=test subject=[terrain seed=1 size=30]";
@@ -94,12 +79,12 @@ fn an_out_that_is_one_of_the_parts_is_refused_however_it_is_spelled() {
         (["link.png", "t-1.png", "--out", "t-0.png"], "link.png"),
     ] {
         let out = stitch_in(&dir, &args);
-        refused(&out, &["--out", "is the part", named]);
+        assert_refused(&out, &["--out", "is the part", named]);
     }
     assert_eq!(std::fs::read(&parts[0]).unwrap(), before);
     // Hard links are the same file too.
     std::fs::hard_link(&parts[1], dir.join("hard.png")).unwrap();
-    refused(
+    assert_refused(
         &stitch_in(&dir, &["t-0.png", "t-1.png", "--out", "hard.png"]),
         &["is the part t-1.png"],
     );
@@ -177,7 +162,7 @@ fn a_part_whose_image_data_was_altered_is_refused_naming_it() {
     )
     .unwrap();
     let out = stitch_in(&dir, &["t-0.png", "tampered.png", "--out", "frame.png"]);
-    refused(&out, &["tampered.png", "corrupt"]);
+    assert_refused(&out, &["tampered.png", "corrupt"]);
     assert!(!dir.join("frame.png").exists());
 }
 
@@ -217,13 +202,13 @@ fn out_dash_to_a_full_disk_a_closed_pipe_or_no_stdout_is_one_error_line() {
         .open("/dev/full")
         .unwrap();
     let out = run(full.into()).wait_with_output().unwrap();
-    refused(&out, &["standard output"]);
+    assert_refused(&out, &["standard output"]);
 
     // A pipe whose reader has gone: the write fails with EPIPE.
     let mut child = run(Stdio::piped());
     drop(child.stdout.take());
     let out = child.wait_with_output().unwrap();
-    refused(&out, &["standard output"]);
+    assert_refused(&out, &["standard output"]);
 
     // Closed (`>&-`): Rust's runtime puts /dev/null there, which must not
     // swallow the frame; a redirection to /dev/null is still fine.
@@ -239,7 +224,7 @@ fn out_dash_to_a_full_disk_a_closed_pipe_or_no_stdout_is_one_error_line() {
             .unwrap()
     };
     if cfg!(target_os = "linux") {
-        refused(&shell(">&-"), &["standard output, which is closed"]);
+        assert_refused(&shell(">&-"), &["standard output, which is closed"]);
     }
     let null = shell(">/dev/null");
     assert!(null.status.success(), "{}", stderr(&null));
@@ -252,6 +237,7 @@ fn out_dash_refuses_a_terminal() {
         eprintln!("skipped: no pseudo-terminal here");
         return;
     };
+    let terminal = open_terminal(&terminal);
     let dir = scratch("stdout-tty");
     two_tiles(&dir);
     let out = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
@@ -260,13 +246,39 @@ fn out_dash_refuses_a_terminal() {
         .stdout(terminal)
         .output()
         .unwrap();
-    refused(&out, &["terminal", "--out FILE"]);
+    assert_refused(&out, &["terminal", "--out FILE"]);
 }
 
-/// The terminal end of a new pseudo-terminal (its other end is leaked:
-/// the test is short).
+/// A terminal named by its path (`/dev/tty`, here a pseudo-terminal's
+/// `/dev/pts/N`) is refused as a render refuses it: no PNG bytes on it.
 #[cfg(unix)]
-fn pseudo_terminal() -> Option<std::fs::File> {
+#[test]
+fn out_a_terminal_by_its_path_is_refused() {
+    let Some(terminal) = pseudo_terminal() else {
+        eprintln!("skipped: no pseudo-terminal here");
+        return;
+    };
+    let dir = scratch("path-tty");
+    two_tiles(&dir);
+    let terminal = terminal.to_str().unwrap();
+    let out = stitch_in(&dir, &["t-0.png", "t-1.png", "--out", terminal]);
+    assert_refused(&out, &["terminal", terminal, "--out FILE"]);
+}
+
+/// Opens the terminal at `path` for reading and writing.
+#[cfg(unix)]
+fn open_terminal(path: &Path) -> std::fs::File {
+    std::fs::OpenOptions::new()
+        .read(true)
+        .write(true)
+        .open(path)
+        .unwrap()
+}
+
+/// The path of the terminal end of a new pseudo-terminal (its other end is
+/// leaked, so that the terminal stays: the test is short).
+#[cfg(unix)]
+fn pseudo_terminal() -> Option<PathBuf> {
     #[allow(unsafe_code)]
     // SAFETY: plain libc calls on a descriptor this function owns; the
     // name buffer is large and NUL-terminated by ptsname_r on success.
@@ -283,11 +295,7 @@ fn pseudo_terminal() -> Option<std::fs::File> {
             .to_string_lossy()
             .into_owned()
     };
-    std::fs::OpenOptions::new()
-        .read(true)
-        .write(true)
-        .open(name)
-        .ok()
+    Some(PathBuf::from(name))
 }
 
 /// SIGTERM while the stitch waits on a part (a FIFO no one writes): exit
@@ -393,8 +401,8 @@ fn a_part_path_with_a_newline_is_one_error_line() {
             "f.png",
         ],
     );
-    refused(&out, &["absent\\nerror: forged\\u{1b}[2K.png"]);
+    assert_refused(&out, &["absent\\nerror: forged\\u{1b}[2K.png"]);
     std::fs::copy(dir.join("t-1.png"), dir.join("new\nline.png")).unwrap();
     let out = stitch_in(&dir, &["t-1.png", "new\nline.png", "--out", "f.png"]);
-    refused(&out, &["duplicate tile 1", "new\\nline.png"]);
+    assert_refused(&out, &["duplicate tile 1", "new\\nline.png"]);
 }

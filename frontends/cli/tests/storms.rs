@@ -12,39 +12,19 @@
 //! --include-ignored`.
 //!
 //! This binary holds this one test alone: the peak resident set it reads
-//! (`getrusage(RUSAGE_CHILDREN)`) is the largest of its own children only.
+//! (`common::usage`) is the largest of its own children only. Linux only.
+
+// Linux: the resident set in kilobytes (see `common::usage`), and `timeout`.
+#![cfg(target_os = "linux")]
 
 mod common;
 
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-use common::limits::scratch;
+use common::run::{assert_refused, fresh_dir, stderr};
+use common::usage::children_usage;
 use common::vox_bytes::storm;
-
-/// Peak resident set of the largest child waited for so far, in bytes,
-/// and the CPU time (user and system) of all of them.
-#[cfg(unix)]
-fn children_usage() -> (u64, Duration) {
-    let mut usage = std::mem::MaybeUninit::<libc::rusage>::zeroed();
-    // SAFETY: getrusage writes a whole rusage into the pointer it is given.
-    #[allow(unsafe_code)]
-    let usage = unsafe {
-        assert_eq!(
-            libc::getrusage(libc::RUSAGE_CHILDREN, usage.as_mut_ptr()),
-            0
-        );
-        usage.assume_init()
-    };
-    let time = |t: libc::timeval| {
-        Duration::from_secs(t.tv_sec as u64) + Duration::from_micros(t.tv_usec as u64)
-    };
-    // Linux reports kilobytes.
-    (
-        u64::try_from(usage.ru_maxrss).unwrap_or(0) * 1024,
-        time(usage.ru_utime) + time(usage.ru_stime),
-    )
-}
 
 /// What a storm must come to: rendered, or refused naming this.
 enum Outcome {
@@ -52,11 +32,10 @@ enum Outcome {
     Refused(&'static str),
 }
 
-#[cfg(unix)]
 #[test]
 #[ignore = "builds of 131,044 instances, minutes unoptimized: .ci/run runs it optimized"]
 fn instance_storms_render_or_are_refused_quickly_in_little_memory() {
-    let dir = scratch("storms");
+    let dir = fresh_dir("storms", "inputs");
     let out = dir.join("out.png");
     let chunk_limit = "more than 131072 chunks of 8^3";
     // The refusals first: the peak so far is then theirs alone.
@@ -97,7 +76,6 @@ fn instance_storms_render_or_are_refused_quickly_in_little_memory() {
         let elapsed = started.elapsed();
         let (rss, cpu_after) = children_usage();
         let cpu = cpu_after - cpu_before;
-        let stderr = String::from_utf8_lossy(&result.stderr);
         println!(
             "storm {name} ({} bytes): exit {:?} in {elapsed:.2?} ({cpu:.2?} CPU), peak RSS so far {} KB",
             bytes.len(),
@@ -106,16 +84,11 @@ fn instance_storms_render_or_are_refused_quickly_in_little_memory() {
         );
         match outcome {
             Outcome::Renders => {
-                assert_eq!(result.status.code(), Some(0), "{name}: {stderr}");
+                assert_eq!(result.status.code(), Some(0), "{name}: {}", stderr(&result));
                 assert!(out.exists(), "{name}: no image");
             }
             Outcome::Refused(needle) => {
-                assert_eq!(result.status.code(), Some(2), "{name}: {stderr}");
-                assert_eq!(stderr.trim_end().lines().count(), 1, "{name}: {stderr}");
-                assert!(
-                    stderr.starts_with("error: ") && stderr.contains(needle),
-                    "{name}: {stderr}"
-                );
+                assert_refused(&result, &[needle]);
                 // Counted before the chunks were allocated.
                 assert!(rss < 50 << 20, "{name}: peak resident set {rss} bytes");
             }

@@ -51,7 +51,9 @@ pub(super) fn destination(target: &Path) -> io::Result<Destination> {
             // to a file with none (a `/proc/self/fd` link to a deleted or
             // anonymous file), which can only be written where it is.
             match std::fs::canonicalize(target) {
-                Ok(real) if same_file(&real, &meta) => Ok(Destination::Replace(real)),
+                Ok(real) if std::fs::metadata(&real).is_ok_and(|m| same_file(&m, &meta)) => {
+                    Ok(Destination::Replace(real))
+                }
                 _ => Ok(Destination::InPlace),
             }
         }
@@ -80,15 +82,23 @@ fn directory_ending(path: &Path) -> Option<&'static str> {
     }
 }
 
-#[cfg(unix)]
-fn same_file(path: &Path, meta: &std::fs::Metadata) -> bool {
-    use std::os::unix::fs::MetadataExt;
-    std::fs::metadata(path).is_ok_and(|m| m.dev() == meta.dev() && m.ino() == meta.ino())
-}
-
-#[cfg(not(unix))]
-fn same_file(path: &Path, _meta: &std::fs::Metadata) -> bool {
-    std::fs::metadata(path).is_ok_and(|m| m.is_file())
+/// Whether `a` and `b` are the status of the same file: the same device
+/// and inode. Where std gives no file identity (not unix) it is `false`:
+/// files are never taken for the same, so a check that refuses a clash
+/// lets it pass and a symlinked output is written in place (not
+/// replaced).
+#[must_use]
+pub fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        (a.dev(), a.ino()) == (b.dev(), b.ino())
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = (a, b);
+        false
+    }
 }
 
 /// `target` does not exist: it is either a new file (a missing directory

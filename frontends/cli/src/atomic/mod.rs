@@ -28,6 +28,7 @@ use std::io::{self, BufWriter, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
+pub use destination::same_file;
 use destination::{destination, Destination};
 
 /// How much of the target's name starts a temporary name: enough to tell

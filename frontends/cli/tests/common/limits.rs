@@ -1,9 +1,10 @@
 //! Running the `voxtrace` binary the way hostile input must be survivable:
 //! under an address-space limit and a time limit, judged by its exit.
 
-use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
+
+use super::run::is_one_error_line;
 
 /// The address-space limit of every hostile run: 1 GiB.
 pub const ADDRESS_SPACE: u64 = 1 << 30;
@@ -13,14 +14,6 @@ pub const ADDRESS_SPACE: u64 = 1 << 30;
 /// it gets 30 s. It catches hangs, not slowness.
 pub fn time_limit() -> Duration {
     Duration::from_secs(if cfg!(debug_assertions) { 30 } else { 5 })
-}
-
-/// A fresh scratch directory for one test binary's inputs.
-pub fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
 
 /// How a limited run ended.
@@ -69,10 +62,9 @@ pub fn run_limited_within(args: &[String], limit: Duration) -> Ended {
 /// The contract for any input: exit 0, or exit 2 with exactly one line
 /// starting `error:`; never a signal, an abort, a panic or a timeout.
 pub fn check_contract(name: &str, ended: &Ended) -> Result<(), String> {
-    let lines: Vec<&str> = ended.stderr.trim_end().lines().collect();
     let ok = match ended.code {
         Some(0) => !ended.stderr.contains("panicked"),
-        Some(2) => lines.len() == 1 && lines[0].starts_with("error: "),
+        Some(2) => is_one_error_line(&ended.stderr),
         _ => false,
     };
     if ok {

@@ -19,6 +19,33 @@ pub fn scratch_in(suite: &str, name: &str) -> PathBuf {
     dir.join(name)
 }
 
+/// A fresh, empty directory `name` in the suite's own folder (see
+/// [`scratch_in`]): what an earlier run left there is removed first.
+pub fn fresh_dir(suite: &str, name: &str) -> PathBuf {
+    let dir = scratch_in(suite, name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Whether `stderr` is one error as the CLI reports every error: exactly
+/// one line, starting `error: `.
+pub fn is_one_error_line(stderr: &str) -> bool {
+    let mut lines = stderr.trim_end().lines();
+    lines.next().is_some_and(|line| line.starts_with("error: ")) && lines.next().is_none()
+}
+
+/// Asserts that `out` is a refusal: exit 2 and one error line (see
+/// [`is_one_error_line`]) containing each of `needles`.
+pub fn assert_refused(out: &Output, needles: &[&str]) {
+    let text = stderr(out);
+    assert_eq!(out.status.code(), Some(2), "not exit 2: {text}");
+    assert!(is_one_error_line(&text), "not one error line: {text}");
+    for needle in needles {
+        assert!(text.contains(needle), "{needle:?} not in {text}");
+    }
+}
+
 /// The run's standard error as text.
 pub fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
