@@ -51,7 +51,20 @@ fn instance_storms_render_or_are_refused_quickly_in_little_memory() {
             storm(2, 64, 300, 257),
             Outcome::Refused(chunk_limit),
         ),
+        // Overlapping instances of a model whose voxels each fill a chunk
+        // of their own: few chunks, many placed voxels. 262,144 x 65 is
+        // past the cap of 2^24 placed voxels; x 64 is the cap itself.
+        (
+            "3x64-of-65-overlapping",
+            storm(3, 64, 0, 65),
+            Outcome::Refused("more than 16777216 voxels"),
+        ),
         ("2x64", storm(2, 64, 100, 1), Outcome::Renders),
+        (
+            "3x64-of-64-overlapping",
+            storm(3, 64, 0, 64),
+            Outcome::Renders,
+        ),
         ("3x32", storm(3, 32, 100, 1), Outcome::Renders),
         // 131,044 instances: the most a storm of two levels places within
         // the chunk limit.
