@@ -76,14 +76,37 @@ fn a_successful_render_replaces_the_file_whole() {
 
 /// `voxtrace ARGS --out OUT`, started: minutes of work for the debug
 /// binary, so still building or rendering when a signal comes.
+///
+/// The run starts with every terminating signal at its default, as from a
+/// terminal, whatever this test inherited: a shell without job control
+/// starts its background jobs with SIGINT and SIGQUIT ignored, and the
+/// binary keeps a signal ignored at its start ignored.
+#[cfg(unix)]
 fn slow_render(out: &Path) -> std::process::Child {
-    Command::new(env!("CARGO_BIN_EXE_voxtrace"))
+    use std::os::unix::process::CommandExt;
+    let signals: Vec<libc::c_int> = terminating_signals().iter().map(|(n, _)| *n).collect();
+    let mut command = Command::new(env!("CARGO_BIN_EXE_voxtrace"));
+    command
         .args(["--size", "100", "--width", "640", "--height", "360"])
         .args(["--spp", "256", "--shadows", "--seed", "1", "--out"])
         .arg(out)
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap()
+        .stderr(Stdio::piped());
+    // SAFETY: between fork and exec the closure only calls sigaction, which
+    // is async-signal-safe, on a zeroed action with the default handler.
+    #[allow(unsafe_code)]
+    unsafe {
+        command.pre_exec(move || {
+            for &signal in &signals {
+                let mut action: libc::sigaction = std::mem::zeroed();
+                action.sa_sigaction = libc::SIG_DFL;
+                if libc::sigaction(signal, &action, std::ptr::null_mut()) != 0 {
+                    return Err(std::io::Error::last_os_error());
+                }
+            }
+            Ok(())
+        });
+    }
+    command.spawn().unwrap()
 }
 
 /// Every signal that ends a process by default and can be caught (see
