@@ -163,29 +163,15 @@ impl BuiltScene {
         }
     }
 
-    /// Renders `region` of `camera`'s frame: with the scalar path on the
-    /// calling thread unless `threaded`, else with `render_parallel` on the
-    /// current rayon pool. `progress` hears of every finished row count.
+    /// Renders `region` of `camera`'s frame of the storage shaded with
+    /// `materials` (a `.vox` file's; `None`: all diffuse): with the scalar
+    /// path on the calling thread unless `threaded`, else with
+    /// `render_parallel` on the current rayon pool. `progress` hears of
+    /// every finished row count.
     ///
     /// # Errors
     /// A one-line message if the region does not fit the frame or its pixels
     /// cannot be allocated.
-    pub fn render(
-        &self,
-        camera: &Camera,
-        region: Rect,
-        options: &RenderOptions,
-        threaded: bool,
-        progress: &(dyn Fn(u32) + Sync),
-    ) -> Result<Rendered, String> {
-        self.render_with(None, camera, region, options, threaded, progress)
-    }
-
-    /// [`BuiltScene::render`] of the storage shaded with `materials` (a
-    /// `.vox` file's; `None`: all diffuse).
-    ///
-    /// # Errors
-    /// As [`BuiltScene::render`].
     pub fn render_with(
         &self,
         materials: Option<SceneMaterials<'_>>,
