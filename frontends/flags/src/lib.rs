@@ -2,7 +2,7 @@
 //! every frontend that offers them, so that the web page's picture for the
 //! same flags is the CLI's byte for byte:
 //!
-//! - [`framing`]: cameras that fit what they show ([`fit`], [`FILL`],
+//! - [`framing`](mod@framing): cameras that fit what they show ([`fit`], [`FILL`],
 //!   [`MODEL_VIEW`]);
 //! - [`camera`]: the one camera that `--view`, `--orbit`, `--position`,
 //!   `--lookat`, `--projection` and friends describe together
