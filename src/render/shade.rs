@@ -137,6 +137,29 @@ pub(crate) fn pack_alpha(c: U8Vec3, a: u8) -> u32 {
     u32::from_ne_bytes([c.x, c.y, c.z, a])
 }
 
+/// Packs a pixel from its samples: with a transparent background the mean
+/// of the `hits` samples that hit something, alpha covering their share of
+/// `samples` (a pixel no sample hit is 0); otherwise the mean of all
+/// `samples`. `mean_of(n)` is the looks' own rounded mean of their sum over
+/// `n` samples (integers for the face-shaded look, radiance for the path
+/// tracer), so both round as they always have.
+#[inline]
+pub(crate) fn pack_mean(
+    samples: u32,
+    hits: u32,
+    transparent: bool,
+    mean_of: impl FnOnce(u32) -> U8Vec3,
+) -> u32 {
+    if !transparent {
+        return pack(mean_of(samples));
+    }
+    if hits == 0 {
+        return 0;
+    }
+    let alpha = (255 * hits + samples / 2) / samples;
+    pack_alpha(mean_of(hits), alpha as u8)
+}
+
 /// The inverse of [`pack`].
 #[inline]
 #[must_use]

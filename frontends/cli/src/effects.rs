@@ -5,9 +5,10 @@
 use clap::parser::ValueSource;
 use clap::ArgMatches;
 use voxtrace::{
-    Background, Bounces, CameraSettings, Fog, IAabb, Lighting, Occlusion, Projection,
-    RenderOptions, SceneMaterials, VoxModel,
+    Background, CameraSettings, IAabb, Occlusion, Projection, RenderOptions, SceneMaterials,
+    VoxModel,
 };
+use voxtrace_flags::Effects;
 
 use crate::args::Args;
 use crate::output;
@@ -24,29 +25,6 @@ pub(crate) fn materials_of(model: &VoxModel) -> SceneMaterials<'_> {
         table: model.materials(),
         emitters: model.emitters(),
     }
-}
-
-/// The light of path-traced frames: the file's sun, sky and bounces where
-/// it has them, `--bounces` over the file's.
-pub(crate) fn lighting(args: &Args, model: Option<&VoxModel>) -> Lighting {
-    let mut light = Lighting::DEFAULT;
-    let settings = model.map(|m| *m.settings()).unwrap_or_default();
-    if let (Some(sun), None) = (settings.sun, args.sun) {
-        light.sun_intensity = sun.intensity;
-        light.sun_radius = sun.radius;
-    }
-    light.sky = settings.sky.or(light.sky);
-    if let Some((diffuse, specular)) = settings.bounces {
-        light.bounces = Bounces { diffuse, specular };
-    }
-    if let Some(n) = args.bounces {
-        light.bounces = Bounces {
-            diffuse: n,
-            specular: n,
-        };
-        light.path_trace = true;
-    }
-    light
 }
 
 /// Notes for flags a path-traced frame does not use (it lights with its
@@ -68,34 +46,29 @@ pub(crate) fn unused_in_path(asked: &RenderOptions) -> Vec<String> {
     )]
 }
 
-/// The effects the flags (and a .vox file's settings) ask for; fog
-/// thickens over the scene's scale.
+/// The effects the flags (and a .vox file's settings) ask for, as every
+/// frontend reads them ([`voxtrace_flags::render_options`]).
 pub(crate) fn render_options(
     args: &Args,
     bounds: IAabb,
     model: Option<&VoxModel>,
 ) -> RenderOptions {
     let BackgroundArg(background) = args.background;
-    let file_sun = model.and_then(|m| m.settings().sun).map(|s| s.direction);
-    RenderOptions {
+    let effects = Effects {
         flat: args.flat,
         debug: args.debug,
-        sun: args
-            .sun
-            .map_or(Some(file_sun.unwrap_or(voxtrace::DEFAULT_SUN)), |sun| sun.0),
+        sun: args.sun.map(|sun| sun.0),
         shadows: args.shadows,
         occlusion: args.ao.map(|rays| Occlusion {
             rays,
             distance: args.ao_distance,
         }),
         samples: args.spp,
-        fog: args.fog.then_some(Fog {
-            // 3 x --size for the terrain: one and a half times the volume's side.
-            distance: 1.5 * bounds.size().max_element() as f32,
-        }),
+        fog: args.fog,
         background,
-        lighting: lighting(args, model),
-    }
+        bounces: args.bounces,
+    };
+    voxtrace_flags::render_options(&effects, bounds, model)
 }
 
 /// One note for each effect asked for that cannot run, so that a user is

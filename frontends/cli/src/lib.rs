@@ -13,7 +13,6 @@ pub mod atomic;
 pub mod errors;
 mod export;
 mod frames;
-mod framing;
 pub mod part;
 mod pipeline;
 mod settings_diff;
@@ -23,6 +22,8 @@ mod units;
 
 pub use export::{export_vox, terrain_box};
 pub use frames::{frame_path, parse_frame_range, turntable, FrameRange};
-pub use framing::{fit, framing, Boxes, FILL, MODEL_VIEW};
+// The framing is the shared crate's (the web page frames the same way);
+// the CLI's tests check it through the CLI.
 pub use pipeline::{on_threads, Backend, BuiltScene, Rendered};
 pub use units::human_bytes;
+pub use voxtrace_flags::framing;

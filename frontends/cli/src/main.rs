@@ -27,13 +27,14 @@ use voxtrace_cli::atomic::{exit_with_error, remove_on_signal, AtomicFile};
 use voxtrace_cli::errors::{self, escape_controls};
 use voxtrace_cli::say;
 use voxtrace_cli::{
-    export_vox, frame_path, on_threads, terrain_box, turntable, Boxes, BuiltScene, FrameRange,
+    export_vox, frame_path, on_threads, terrain_box, turntable, BuiltScene, FrameRange,
 };
+use voxtrace_flags::{describe, Boxes, Stage};
 
 use args::Args;
 use effects::{ignored_effects, ignored_flags, materials_of, render_options, unused_in_path};
 use progress::{Progress, Spinner};
-use view::{camera_settings, describe, Stage};
+use view::camera_settings;
 
 fn main() -> ExitCode {
     if let Some(code) = farm::subcommand() {
@@ -124,15 +125,15 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
             Subject::Terrain { seed, random }
         }
     };
-    let (bounds, stage) = match &subject {
+    let (bounds, stage, cameras) = match &subject {
         Subject::Terrain { .. } => (
             IAabb::centered(args.size),
             Stage {
                 boxes: Boxes::Bounds(IAabb::centered(args.size)),
                 target: Vec3::ZERO,
                 default_position: Some(CameraSettings::paper(args.size).lookfrom),
-                cameras: None,
             },
+            None,
         ),
         Subject::Model(model) => (
             model.bounds(),
@@ -140,11 +141,11 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
                 boxes: Boxes::Model(model),
                 target: (model.bounds().min + model.bounds().max).as_vec3() * 0.5,
                 default_position: None,
-                cameras: args.vox.as_deref().map(|path| (path, model.as_ref())),
             },
+            args.vox.as_deref().map(|path| (path, model.as_ref())),
         ),
     };
-    let settings = camera_settings(args, &stage)?;
+    let settings = camera_settings(args, &stage, cameras)?;
     let frames = args.frames.unwrap_or(1);
     let range = match farm::task_frames(args, args.frames)? {
         Some(range) => range,

@@ -163,29 +163,15 @@ impl BuiltScene {
         }
     }
 
-    /// Renders `region` of `camera`'s frame: with the scalar path on the
-    /// calling thread unless `threaded`, else with `render_parallel` on the
-    /// current rayon pool. `progress` hears of every finished row count.
+    /// Renders `region` of `camera`'s frame of the storage shaded with
+    /// `materials` (a `.vox` file's; `None`: all diffuse): with the scalar
+    /// path on the calling thread unless `threaded`, else with
+    /// `render_parallel` on the current rayon pool. `progress` hears of
+    /// every finished row count.
     ///
     /// # Errors
     /// A one-line message if the region does not fit the frame or its pixels
     /// cannot be allocated.
-    pub fn render(
-        &self,
-        camera: &Camera,
-        region: Rect,
-        options: &RenderOptions,
-        threaded: bool,
-        progress: &(dyn Fn(u32) + Sync),
-    ) -> Result<Rendered, String> {
-        self.render_with(None, camera, region, options, threaded, progress)
-    }
-
-    /// [`BuiltScene::render`] of the storage shaded with `materials` (a
-    /// `.vox` file's; `None`: all diffuse).
-    ///
-    /// # Errors
-    /// As [`BuiltScene::render`].
     pub fn render_with(
         &self,
         materials: Option<SceneMaterials<'_>>,
@@ -195,73 +181,94 @@ impl BuiltScene {
         threaded: bool,
         progress: &(dyn Fn(u32) + Sync),
     ) -> Result<Rendered, String> {
+        let job = RenderJob {
+            camera,
+            region,
+            options,
+            threaded,
+            progress,
+        };
         // Monomorphized per storage: the hot loop never calls through `dyn`.
-        match (self, materials) {
-            (BuiltScene::Dense(scene), None) => {
-                render(scene, camera, region, options, threaded, progress)
-            }
-            (BuiltScene::Octree(scene), None) => {
-                render(scene, camera, region, options, threaded, progress)
-            }
-            (BuiltScene::Dense(scene), Some(m)) => {
-                let scene = WithMaterials::new(scene, m.table, m.emitters);
-                render(&scene, camera, region, options, threaded, progress)
-            }
-            (BuiltScene::Octree(scene), Some(m)) => {
-                let scene = WithMaterials::new(scene, m.table, m.emitters);
-                render(&scene, camera, region, options, threaded, progress)
-            }
+        match self {
+            BuiltScene::Dense(scene) => job.shaded(scene, materials),
+            BuiltScene::Octree(scene) => job.shaded(scene, materials),
         }
     }
 }
 
-fn render<S: Scene + Sync>(
-    scene: &S,
-    camera: &Camera,
+/// What [`BuiltScene::render_with`] renders, whatever the storage.
+struct RenderJob<'a> {
+    camera: &'a Camera,
     region: Rect,
-    options: &RenderOptions,
+    options: &'a RenderOptions,
     threaded: bool,
-    progress: &(dyn Fn(u32) + Sync),
-) -> Result<Rendered, String> {
-    let no_memory = || {
-        format!(
-            "out of memory: cannot allocate a {}x{} image",
-            region.width, region.height
-        )
-    };
-    region.validate(camera).map_err(|e| e.to_string())?;
-    let started = Instant::now();
-    let (pixels, rays) = if threaded {
-        // Zeroed on the render's own pool (this runs inside its `install`).
-        let frame =
-            Framebuffer::new_parallel(region.width, region.height).map_err(|_| no_memory())?;
-        let rays = render_parallel_with_progress(scene, camera, options, region, &frame, progress)
-            .map_err(|e| e.to_string())?;
-        (frame.into_pixels(), rays)
-    } else {
-        // The scalar path, a band of rows at a time for the progress
-        // callback (sixteen rows: the tiles primary rays are traced in).
-        const BAND: u32 = 16;
-        let area = region.area().map_err(|e| e.to_string())?;
-        let mut pixels = Vec::new();
-        pixels.try_reserve_exact(area).map_err(|_| no_memory())?;
-        pixels.resize(area, 0);
-        let mut rays = RayStats::default();
-        let bands = pixels.chunks_mut(region.width as usize * BAND as usize);
-        for (y, band) in (region.y..).step_by(BAND as usize).zip(bands) {
-            let rect = Rect {
-                y,
-                height: (band.len() / region.width as usize) as u32,
-                ..region
-            };
-            rays += render_region(scene, camera, options, rect, band).map_err(|e| e.to_string())?;
-            progress(rect.height);
+    progress: &'a (dyn Fn(u32) + Sync),
+}
+
+impl RenderJob<'_> {
+    /// Renders `scene` shaded with `materials` (`None`: all diffuse).
+    fn shaded<S: Scene + Sync>(
+        &self,
+        scene: &S,
+        materials: Option<SceneMaterials<'_>>,
+    ) -> Result<Rendered, String> {
+        match materials {
+            None => self.run(scene),
+            Some(m) => self.run(&WithMaterials::new(scene, m.table, m.emitters)),
         }
-        (pixels, rays)
-    };
-    Ok(Rendered {
-        pixels,
-        rays,
-        elapsed: started.elapsed(),
-    })
+    }
+
+    /// Renders `scene` as it is.
+    fn run<S: Scene + Sync>(&self, scene: &S) -> Result<Rendered, String> {
+        let RenderJob {
+            camera,
+            region,
+            options,
+            threaded,
+            progress,
+        } = *self;
+        let no_memory = || {
+            format!(
+                "out of memory: cannot allocate a {}x{} image",
+                region.width, region.height
+            )
+        };
+        region.validate(camera).map_err(|e| e.to_string())?;
+        let started = Instant::now();
+        let (pixels, rays) = if threaded {
+            // Zeroed on the render's own pool (this runs inside its `install`).
+            let frame =
+                Framebuffer::new_parallel(region.width, region.height).map_err(|_| no_memory())?;
+            let rays =
+                render_parallel_with_progress(scene, camera, options, region, &frame, progress)
+                    .map_err(|e| e.to_string())?;
+            (frame.into_pixels(), rays)
+        } else {
+            // The scalar path, a band of rows at a time for the progress
+            // callback (sixteen rows: the tiles primary rays are traced in).
+            const BAND: u32 = 16;
+            let area = region.area().map_err(|e| e.to_string())?;
+            let mut pixels = Vec::new();
+            pixels.try_reserve_exact(area).map_err(|_| no_memory())?;
+            pixels.resize(area, 0);
+            let mut rays = RayStats::default();
+            let bands = pixels.chunks_mut(region.width as usize * BAND as usize);
+            for (y, band) in (region.y..).step_by(BAND as usize).zip(bands) {
+                let rect = Rect {
+                    y,
+                    height: (band.len() / region.width as usize) as u32,
+                    ..region
+                };
+                rays +=
+                    render_region(scene, camera, options, rect, band).map_err(|e| e.to_string())?;
+                progress(rect.height);
+            }
+            (pixels, rays)
+        };
+        Ok(Rendered {
+            pixels,
+            rays,
+            elapsed: started.elapsed(),
+        })
+    }
 }

@@ -17,7 +17,7 @@ use voxtrace::{
     Material, Materials, OctreeScene, Orbit, Palette, RayStats, Rect, RenderOptions, Scene,
     VoxModel, WithMaterials,
 };
-use voxtrace_cli::{fit, Boxes};
+use voxtrace_flags::{fit, Boxes};
 
 use crate::image_error::{psnr, rmse};
 use crate::measure::{count_of, format_ms, median_of};

@@ -126,8 +126,14 @@ fn measure_one(
         for view in [View::Paper, View::Above] {
             let camera = camera(size, (width, height), view)?;
             let ms = median_of(runs, || {
-                let rendered =
-                    scene.render(&camera, Rect::full(&camera), &options, true, &|_| {})?;
+                let rendered = scene.render_with(
+                    None,
+                    &camera,
+                    Rect::full(&camera),
+                    &options,
+                    true,
+                    &|_| {},
+                )?;
                 Ok(rendered.elapsed)
             })?;
             eprintln!(

@@ -12,7 +12,7 @@
 //! - `vt_render(backend, view, a, b, c, zoom, effects, ao_rays, width,
 //!   height)`: builds the scene (kept while it and the backend stay the
 //!   same) and renders it; `view` and `a, b, c` place the camera
-//!   ([`camera::View::from_code`]: a position, an orbit, or a preset such
+//!   ([`camera::aim_from_code`]: a position, an orbit, or a preset such
 //!   as top or iso, framed as the CLI frames them), `zoom` magnifies it
 //!   (the mouse wheel; 1 is the CLI's framing), `effects` holds the
 //!   [`options::SHADOWS`] and [`options::FOG`] bits and `ao_rays` is
@@ -37,7 +37,8 @@ use voxtrace::{
     VoxelGenerator, WithMaterials, MAX_COORD,
 };
 
-use camera::{Shown, View};
+use voxtrace::glam::Vec3;
+use voxtrace_flags::{describe, Aim, Boxes, Stage};
 
 /// Why a call failed (its return value).
 #[repr(u32)]
@@ -76,10 +77,21 @@ impl Subject {
         }
     }
 
-    fn shown(&self) -> Shown<'_> {
-        match self {
-            Subject::Terrain { size, .. } => Shown::Terrain(IAabb::centered(*size)),
-            Subject::Model(model) => Shown::Model(model),
+    /// What the camera shows, as the CLI stages it: the terrain's volume,
+    /// looked at from its center (the origin), or a model's voxels, each
+    /// its own box, looked at from its bounds' center.
+    fn stage(&self) -> Stage<'_> {
+        let (boxes, target) = match self {
+            Subject::Terrain { size, .. } => (Boxes::Bounds(IAabb::centered(*size)), Vec3::ZERO),
+            Subject::Model(model) => (
+                Boxes::Model(model),
+                (model.bounds().min + model.bounds().max).as_vec3() * 0.5,
+            ),
+        };
+        Stage {
+            boxes,
+            target,
+            default_position: None,
         }
     }
 
@@ -181,7 +193,7 @@ pub extern "C" fn vt_render(
     height: u32,
 ) -> u32 {
     let mut state = state();
-    let Some(view) = View::from_code(view, a, b, c) else {
+    let Some(aim) = camera::aim_from_code(view, a, b, c) else {
         return ErrorCode::BadScene as u32;
     };
     let Ok(ao_rays) = u16::try_from(ao_rays) else {
@@ -189,7 +201,7 @@ pub extern "C" fn vt_render(
     };
     let frame = Frame {
         backend,
-        view,
+        aim,
         zoom,
         effects,
         ao_rays,
@@ -202,7 +214,7 @@ pub extern "C" fn vt_render(
 /// What one `vt_render` call asks for.
 struct Frame {
     backend: u32,
-    view: View,
+    aim: Aim,
     zoom: f32,
     effects: u32,
     ao_rays: u16,
@@ -236,7 +248,7 @@ fn render_into(state: &mut State, f: &Frame) -> ErrorCode {
             }
         }
     }
-    let Some(settings) = camera::settings(f.view, f.zoom, f.width, f.height, subject.shown())
+    let Some(settings) = camera::settings(f.aim, f.zoom, f.width, f.height, &subject.stage())
     else {
         *message = "no camera for this view (a zoom that is not a positive number?)".into();
         return ErrorCode::BadCamera;
@@ -266,7 +278,7 @@ fn render_into(state: &mut State, f: &Frame) -> ErrorCode {
         *message = "the frame could not be rendered".into();
         return ErrorCode::Render;
     }
-    *message = camera::describe(&settings);
+    *message = describe(&settings, false);
     ErrorCode::Ok
 }
 

@@ -33,7 +33,7 @@ use crate::render::memories::Memories;
 use crate::render::options::{Background, Bounces, Fog, RenderOptions};
 use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
-use crate::render::shade::{pack, pack_alpha, sky, to_u8, SKY_HORIZON};
+use crate::render::shade::{pack_mean, sky, to_u8, SKY_HORIZON};
 use crate::render::stats::RayStats;
 use crate::scene::Scene;
 
@@ -185,17 +185,9 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
                 sum += radiance.clamp(Vec3::ZERO, Vec3::splat(MAX_RADIANCE));
             }
         }
-        if transparent {
-            // The mean of the hits, covering the share of samples that hit.
-            let hits = stats.primary_hits as u32;
-            if hits == 0 {
-                return (0, stats);
-            }
-            let mean = to_u8(sum * (255.0 / hits as f32));
-            let alpha = (255 * hits + samples / 2) / samples;
-            return (pack_alpha(mean, alpha as u8), stats);
-        }
-        (pack(to_u8(sum * (255.0 / samples as f32))), stats)
+        let mean_of = |n: u32| to_u8(sum * (255.0 / n as f32));
+        let hits = stats.primary_hits as u32;
+        (pack_mean(samples, hits, transparent, mean_of), stats)
     }
 }
 

@@ -16,7 +16,7 @@ use crate::render::options::Background;
 use crate::render::path::{Path, PathSetup};
 use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
-use crate::render::shade::{face_index, fog_blend, lit, pack, pack_alpha, sky, FLAT_SKY};
+use crate::render::shade::{face_index, fog_blend, lit, pack, pack_mean, sky, FLAT_SKY};
 use crate::render::shader::{FrameJob, Kernel, Shader};
 use crate::render::stats::RayStats;
 use crate::scene::Scene;
@@ -231,19 +231,10 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
             }
             stats += rays;
         }
-        if transparent {
-            // The mean of the hits, covering the share of samples that hit.
-            let hits = stats.primary_hits as u32;
-            if hits == 0 {
-                return (0, stats);
-            }
-            let mean = (sum + UVec3::splat(hits / 2)) / hits;
-            let alpha = (255 * hits + samples / 2) / samples;
-            return (pack_alpha(mean.as_u8vec3(), alpha as u8), stats);
-        }
         // The rounded mean, in integers.
-        let mean = (sum + UVec3::splat(samples / 2)) / samples;
-        (pack(mean.as_u8vec3()), stats)
+        let mean_of = |n: u32| ((sum + UVec3::splat(n / 2)) / n).as_u8vec3();
+        let hits = stats.primary_hits as u32;
+        (pack_mean(samples, hits, transparent, mean_of), stats)
     }
 }
 

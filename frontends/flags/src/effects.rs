@@ -1,0 +1,95 @@
+//! The render options the effect flags ask for, a `.vox` file's sun, sky
+//! and bounces folded in.
+
+use voxtrace::glam::Vec3;
+use voxtrace::{
+    Background, Bounces, Fog, IAabb, Lighting, Occlusion, RenderOptions, VoxModel, DEFAULT_SUN,
+};
+
+/// The effect flags.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Effects {
+    /// `--flat`.
+    pub flat: bool,
+    /// `--debug`.
+    pub debug: bool,
+    /// `--sun`: `None` for the `.vox` file's sun or [`DEFAULT_SUN`],
+    /// `Some(None)` for a scene without light (`--sun none`).
+    pub sun: Option<Option<Vec3>>,
+    /// `--shadows`.
+    pub shadows: bool,
+    /// `--ao N` with `--ao-distance`.
+    pub occlusion: Option<Occlusion>,
+    /// `--spp`.
+    pub samples: u16,
+    /// `--fog`.
+    pub fog: bool,
+    /// `--background`.
+    pub background: Background,
+    /// `--bounces` (over the file's; path-traces even an all-diffuse
+    /// scene).
+    pub bounces: Option<u8>,
+}
+
+impl Default for Effects {
+    /// No effect flag given.
+    fn default() -> Self {
+        let options = RenderOptions::default();
+        Effects {
+            flat: options.flat,
+            debug: options.debug,
+            sun: None,
+            shadows: options.shadows,
+            occlusion: options.occlusion,
+            samples: options.samples,
+            fog: false,
+            background: options.background,
+            bounces: None,
+        }
+    }
+}
+
+/// The light of path-traced frames: `model`'s sun (unless `--sun` was
+/// given), sky and bounces where it has them, `bounces` over the file's.
+#[must_use]
+fn lighting(effects: &Effects, model: Option<&VoxModel>) -> Lighting {
+    let mut light = Lighting::DEFAULT;
+    let settings = model.map(|m| *m.settings()).unwrap_or_default();
+    if let (Some(sun), None) = (settings.sun, effects.sun) {
+        light.sun_intensity = sun.intensity;
+        light.sun_radius = sun.radius;
+    }
+    light.sky = settings.sky.or(light.sky);
+    if let Some((diffuse, specular)) = settings.bounces {
+        light.bounces = Bounces { diffuse, specular };
+    }
+    if let Some(n) = effects.bounces {
+        light.bounces = Bounces {
+            diffuse: n,
+            specular: n,
+        };
+        light.path_trace = true;
+    }
+    light
+}
+
+/// The options `effects` ask for on the scene `bounds` (fog thickens over
+/// their largest side), lit as `model` says when there is one.
+#[must_use]
+pub fn render_options(effects: &Effects, bounds: IAabb, model: Option<&VoxModel>) -> RenderOptions {
+    let file_sun = model.and_then(|m| m.settings().sun).map(|s| s.direction);
+    RenderOptions {
+        flat: effects.flat,
+        debug: effects.debug,
+        sun: effects.sun.unwrap_or(Some(file_sun.unwrap_or(DEFAULT_SUN))),
+        shadows: effects.shadows,
+        occlusion: effects.occlusion,
+        samples: effects.samples,
+        fog: effects.fog.then_some(Fog {
+            // 3 x --size for the terrain: one and a half times the volume's side.
+            distance: 1.5 * bounds.size().max_element() as f32,
+        }),
+        background: effects.background,
+        lighting: lighting(effects, model),
+    }
+}

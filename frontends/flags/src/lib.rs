@@ -1,0 +1,21 @@
+//! What the `voxtrace` CLI's camera and effect flags mean, written once for
+//! every frontend that offers them, so that the web page's picture for the
+//! same flags is the CLI's byte for byte:
+//!
+//! - [`framing`](mod@framing): cameras that fit what they show ([`fit`], [`FILL`],
+//!   [`MODEL_VIEW`]);
+//! - [`camera`]: the one camera that `--view`, `--orbit`, `--position`,
+//!   `--lookat`, `--projection` and friends describe together
+//!   ([`resolve`]), and the flags that reproduce a camera ([`describe`]);
+//! - [`effects`]: the render options the effect flags ask for, a `.vox`
+//!   file's light folded in ([`render_options`]).
+//!
+//! Every function takes plain values, not a frontend's parsed arguments.
+
+pub mod camera;
+pub mod effects;
+pub mod framing;
+
+pub use camera::{describe, resolve, Aim, CameraFlags, Stage};
+pub use effects::{render_options, Effects};
+pub use framing::{fit, framing, Boxes, FILL, MODEL_VIEW};
