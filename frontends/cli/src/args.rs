@@ -1,4 +1,6 @@
-//! Command-line arguments (the CLI contract in ARCHITECTURE.md and the README).
+//! Command-line arguments (the CLI contract in ARCHITECTURE.md and the
+//! README): every clap type and value parser of the binary lives here and
+//! in its two children, and this module imports no sibling.
 
 use std::path::PathBuf;
 
@@ -7,8 +9,14 @@ use voxtrace::glam::Vec3;
 use voxtrace::Rect;
 use voxtrace_cli::{parse_frame_range, Backend, FrameRange};
 
-use crate::output::FormatArg;
-use crate::view::{parse_background, parse_orbit, BackgroundArg, OrbitArg, ProjectionArg, ViewArg};
+mod farm;
+mod values;
+
+pub use farm::{StitchArgs, TileArgs};
+pub use values::{
+    parse_background, parse_bytes, parse_distance, parse_orbit, parse_rect, parse_sun, parse_vec3,
+    BackgroundArg, FormatArg, OrbitArg, ProjectionArg, Sun, ViewArg,
+};
 
 /// Render the seeded Perlin terrain of the voxtrace paper, or a MagicaVoxel
 /// .vox scene, to an image (PNG, BMP, TGA or PPM).
@@ -182,72 +190,11 @@ pub struct Args {
 
     /// Render-farm tiles (`--tiles`, `--tile-index`).
     #[command(flatten)]
-    pub farm: crate::farm::TileArgs,
+    pub farm: TileArgs,
 
     /// Memory the scene and frame may use, in bytes with an optional K, M, G
     /// or T suffix (512M, 4G); a scene estimated to need more is refused
     /// before it is built [default: what the OS says is available].
-    #[arg(long, value_name = "BYTES", value_parser = crate::memory::parse_bytes)]
+    #[arg(long, value_name = "BYTES", value_parser = parse_bytes)]
     pub max_memory: Option<u64>,
-}
-
-pub(crate) fn parse_numbers<const N: usize, T: std::str::FromStr>(
-    s: &str,
-    what: &str,
-) -> Result<[T; N], String> {
-    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
-    if parts.len() != N {
-        return Err(format!("expected {what}, got '{s}'"));
-    }
-    let mut out = Vec::with_capacity(N);
-    for p in parts {
-        out.push(
-            p.parse::<T>()
-                .map_err(|_| format!("'{p}' is not a valid number in '{s}'"))?,
-        );
-    }
-    out.try_into()
-        .map_err(|_| format!("expected {what}, got '{s}'"))
-}
-
-pub(crate) fn parse_vec3(s: &str) -> Result<Vec3, String> {
-    let [x, y, z] = parse_numbers::<3, f32>(s, "three numbers X,Y,Z")?;
-    let v = Vec3::new(x, y, z);
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(format!("'{s}' must be finite"))
-    }
-}
-
-/// The `--sun` setting: a direction, or no light at all.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sun(pub Option<Vec3>);
-
-fn parse_sun(s: &str) -> Result<Sun, String> {
-    if s.trim().eq_ignore_ascii_case("none") {
-        return Ok(Sun(None));
-    }
-    let v = parse_vec3(s)?;
-    if v == Vec3::ZERO {
-        return Err(format!("'{s}' is not a direction (all zero)"));
-    }
-    Ok(Sun(Some(v)))
-}
-
-fn parse_distance(s: &str) -> Result<f32, String> {
-    match s.trim().parse::<f32>() {
-        Ok(d) if d > 0.0 && d.is_finite() => Ok(d),
-        _ => Err(format!("'{s}' is not a positive finite distance")),
-    }
-}
-
-fn parse_rect(s: &str) -> Result<Rect, String> {
-    let [x, y, width, height] = parse_numbers::<4, u32>(s, "four whole numbers X,Y,W,H")?;
-    Ok(Rect {
-        x,
-        y,
-        width,
-        height,
-    })
 }

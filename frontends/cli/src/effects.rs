@@ -11,8 +11,8 @@ use voxtrace::{
 use voxtrace_flags::Effects;
 
 use crate::args::Args;
+use crate::args::{BackgroundArg, ProjectionArg};
 use crate::output;
-use crate::view::{BackgroundArg, ProjectionArg};
 
 /// Whether the flag `id` was given on the command line (not a default).
 fn given(matches: &ArgMatches, id: &str) -> bool {

@@ -23,6 +23,21 @@ pub fn write_line(line: std::fmt::Arguments<'_>) {
     let _ = writeln!(std::io::stderr().lock(), "{line}");
 }
 
+/// What a failed parse ends with: help and version go to stdout with exit
+/// 0; a parse error is [`one_line`] on stderr, and exit 2.
+pub fn clap_failure(error: &clap::Error, argv: &[String]) -> std::process::ExitCode {
+    use clap::error::ErrorKind;
+    if matches!(
+        error.kind(),
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion
+    ) {
+        let _ = error.print();
+        return std::process::ExitCode::SUCCESS;
+    }
+    write_line(format_args!("{}", one_line(error, argv)));
+    std::process::ExitCode::from(2)
+}
+
 /// `error` rendered on one line starting with `error:`; `argv` is the
 /// command line (for the tip about negative values).
 pub fn one_line(error: &clap::Error, argv: &[String]) -> String {

@@ -12,39 +12,11 @@ use voxtrace::{Camera, RenderOptions};
 use voxtrace_cli::atomic::{exit_with_error, remove_on_signal, same_file};
 use voxtrace_cli::part::{fnv1a64, settings_text, write_part, Placement};
 use voxtrace_cli::stitch::{list, stitch};
-use voxtrace_cli::tiles::{frames_for_task, tile_name, Grid, TaskIndex};
+use voxtrace_cli::tiles::{frames_for_task, tile_name};
 use voxtrace_cli::{say, FrameRange};
 
-use crate::args::Args;
+use crate::args::{Args, StitchArgs};
 use crate::{memory, output};
-
-/// The flags that make a render one task of a job array.
-#[derive(Debug, Clone, clap::Args)]
-pub struct TileArgs {
-    /// Cut the frame into a grid of COLUMNS x ROWS tiles (for example 4x4)
-    /// and render only the tile --tile-index picks; the PNG then carries
-    /// its place in the frame for `voxtrace stitch`. `%t` in --out becomes
-    /// the tile number.
-    #[arg(long, value_name = "CxR", value_parser = Grid::parse, conflicts_with = "region")]
-    pub tiles: Option<Grid>,
-
-    /// The tile to render with --tiles, row-major from 0, or env:VAR to read
-    /// it from an environment variable (env:SLURM_ARRAY_TASK_ID).
-    #[arg(long, value_name = "I|env:VAR", value_parser = TaskIndex::parse)]
-    pub tile_index: Option<TaskIndex>,
-
-    /// Split the --frames animation into this many runs of consecutive
-    /// frames (differing by at most one frame) and render only the run
-    /// --task-index picks: one command line for every task of an array.
-    #[arg(long, value_name = "T", requires = "task_index")]
-    pub tasks: Option<u32>,
-
-    /// The run of frames to render with --tasks, from 0, or env:VAR
-    /// (env:SLURM_ARRAY_TASK_ID).
-    #[arg(long, value_name = "I|env:VAR", value_parser = TaskIndex::parse,
-          requires = "tasks", conflicts_with = "frame_range")]
-    pub task_index: Option<TaskIndex>,
-}
 
 /// The frames `--tasks T --task-index I` pick out of an animation of
 /// `frames` (`None` without those flags).
@@ -168,32 +140,6 @@ pub fn write_tile(out: impl Write, job: &TileJob, pixels: &[u32]) -> Result<(), 
     write_part(BufWriter::new(out), &job.placement, &job.settings, pixels)
 }
 
-/// `voxtrace stitch PART... --out FILE [--allow-partial]`.
-#[derive(Debug, Parser)]
-#[command(
-    name = "voxtrace stitch",
-    version,
-    about = "Assemble the tiles of one frame (rendered with --tiles) into the full PNG, \
-             the same file a single render writes; refuses parts that do not fit together."
-)]
-struct StitchArgs {
-    /// The part PNGs, in any order.
-    // Both required, but checked by hand: clap would name them on a second
-    // line, and an error is one line.
-    #[arg(value_name = "PART")]
-    parts: Vec<PathBuf>,
-
-    /// The stitched PNG, written whole or not at all; `-` writes it to
-    /// standard output (not a terminal). It cannot be one of the parts.
-    #[arg(long, value_name = "FILE")]
-    out: Option<PathBuf>,
-
-    /// Fill missing tiles with a checkerboard (and list them) instead of
-    /// refusing: for previews.
-    #[arg(long)]
-    allow_partial: bool,
-}
-
 /// Runs `voxtrace stitch` when it is the first argument; `None` leaves the
 /// arguments to the renderer.
 pub fn subcommand() -> Option<ExitCode> {
@@ -215,7 +161,7 @@ pub fn subcommand() -> Option<ExitCode> {
     );
     let args = match parsed {
         Ok(args) => args,
-        Err(e) => return Some(crate::clap_failure(&e, &argv)),
+        Err(e) => return Some(voxtrace_cli::errors::clap_failure(&e, &argv)),
     };
     Some(match run_stitch(&args) {
         Ok(()) => ExitCode::SUCCESS,

@@ -48,7 +48,7 @@ fn main() -> ExitCode {
         .and_then(|m| Args::from_arg_matches(&m).map(|a| (a, m)));
     let (args, matches) = match parsed {
         Ok(parsed) => parsed,
-        Err(e) => return clap_failure(&e, &argv),
+        Err(e) => return errors::clap_failure(&e, &argv),
     };
     // Before any output exists: an interrupted run then removes its
     // temporary files and leaves every output file as it was.
@@ -56,18 +56,6 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => exit_with_error(&message),
     }
-}
-
-/// Help and version go to stdout with exit 0; a parse error is one line
-/// with clap's hints kept, and exit 2.
-fn clap_failure(e: &clap::Error, argv: &[String]) -> ExitCode {
-    use clap::error::ErrorKind;
-    if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
-        let _ = e.print();
-        return ExitCode::SUCCESS;
-    }
-    say!("{}", errors::one_line(e, argv));
-    ExitCode::from(2)
 }
 
 /// A seed from the clock and process id: different per run, printed so the

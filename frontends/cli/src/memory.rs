@@ -142,45 +142,9 @@ fn field_kib(text: &str, name: &str) -> Option<u128> {
     Some(kib * 1024)
 }
 
-/// Parses `--max-memory`: a byte count with an optional binary suffix, `K`,
-/// `M`, `G` or `T` (powers of 1024, also written `KiB`, `KB`, `k`, ...).
-pub fn parse_bytes(s: &str) -> Result<u64, String> {
-    let text = s.trim();
-    let digits = text
-        .find(|c: char| !c.is_ascii_digit())
-        .unwrap_or(text.len());
-    let (number, suffix) = text.split_at(digits);
-    let shift = match suffix.trim().to_ascii_uppercase().as_str() {
-        "" | "B" => 0,
-        "K" | "KB" | "KIB" => 10,
-        "M" | "MB" | "MIB" => 20,
-        "G" | "GB" | "GIB" => 30,
-        "T" | "TB" | "TIB" => 40,
-        _ => return Err(format!("'{s}' is not a byte count like 512M or 4G")),
-    };
-    number
-        .parse::<u64>()
-        .ok()
-        .and_then(|n| n.checked_mul(1u64 << shift))
-        .filter(|&n| n > 0)
-        .ok_or_else(|| format!("'{s}' is not a byte count like 512M or 4G"))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn byte_counts_take_binary_suffixes() {
-        assert_eq!(parse_bytes("1000"), Ok(1000));
-        assert_eq!(parse_bytes("512M"), Ok(512 << 20));
-        assert_eq!(parse_bytes("4G"), Ok(4 << 30));
-        assert_eq!(parse_bytes("4GiB"), Ok(4 << 30));
-        assert_eq!(parse_bytes("2k"), Ok(2048));
-        for bad in ["", "0", "G", "4X", "-1", "1.5G", "99999999999T"] {
-            assert!(parse_bytes(bad).is_err(), "{bad}");
-        }
-    }
 
     #[test]
     fn the_os_gives_a_figure_on_linux() {

@@ -6,8 +6,9 @@
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
-use clap::ValueEnum;
 use voxtrace_cli::atomic::AtomicFile;
+
+use crate::args::FormatArg;
 
 /// The file format `--out` asks for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -17,19 +18,6 @@ pub enum Format {
     /// Another format the image crate writes.
     #[cfg(feature = "image")]
     Other(image::ImageFormat),
-}
-
-/// `--format`: every format a build can write.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum FormatArg {
-    /// PNG, with alpha.
-    Png,
-    /// Windows bitmap (with the `image` feature), with alpha.
-    Bmp,
-    /// Targa (with the `image` feature), with alpha.
-    Tga,
-    /// Binary color pixmap (with the `image` feature), no alpha.
-    Ppm,
 }
 
 /// The formats this build writes, for error messages.
