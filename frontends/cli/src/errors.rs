@@ -26,7 +26,6 @@ pub fn write_line(line: std::fmt::Arguments<'_>) {
 /// What a failed parse ends with: help and version go to stdout with exit
 /// 0; a parse error is [`one_line`] on stderr, and exit 2.
 pub fn clap_failure(error: &clap::Error, argv: &[String]) -> std::process::ExitCode {
-    use clap::error::ErrorKind;
     if matches!(
         error.kind(),
         ErrorKind::DisplayHelp | ErrorKind::DisplayVersion
