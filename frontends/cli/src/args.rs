@@ -26,8 +26,10 @@ pub use values::{
     version,
     about,
     args_override_self = true,
-    after_help = "Subcommand: voxtrace stitch PART... --out FILE assembles the tiles of \
-                  --tiles renders into the full frame (voxtrace stitch --help)."
+    // `voxtrace stitch ...` or a render's flags, not both; no `help`
+    // subcommand (`--help` is the way, as before).
+    args_conflicts_with_subcommands = true,
+    disable_help_subcommand = true,
 )]
 pub struct Args {
     /// Storage backend.
@@ -197,4 +199,17 @@ pub struct Args {
     /// before it is built [default: what the OS says is available].
     #[arg(long, value_name = "BYTES", value_parser = parse_bytes)]
     pub max_memory: Option<u64>,
+
+    /// `voxtrace stitch`, instead of a render.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+/// The subcommands: without one, `voxtrace` renders.
+#[derive(Debug, clap::Subcommand)]
+pub enum Command {
+    /// Assemble the tiles of one frame (rendered with --tiles) into the full
+    /// PNG, the same file a single render writes; refuses parts that do not
+    /// fit together.
+    Stitch(StitchArgs),
 }

@@ -47,9 +47,12 @@ pub fn one_line(error: &clap::Error, argv: &[String]) -> String {
         text = text.replace(arg.as_str(), &escape_controls(arg));
     }
     let mut line = String::new();
+    // The usage block runs from "Usage:" to the next blank line (one line
+    // per form: `voxtrace [OPTIONS]`, then `voxtrace <COMMAND>`).
+    let mut in_usage = false;
     for part in text.lines().map(str::trim) {
-        if part.is_empty() || part.starts_with("Usage:") || part.starts_with("For more information")
-        {
+        in_usage = part.starts_with("Usage:") || (in_usage && !part.is_empty());
+        if in_usage || part.is_empty() || part.starts_with("For more information") {
             continue;
         }
         if !line.is_empty() {

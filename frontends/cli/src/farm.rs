@@ -2,14 +2,11 @@
 //! one tile of the frame and writes it as a part that knows where it
 //! belongs, and `voxtrace stitch` puts the parts back together.
 
-use std::ffi::OsString;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
 
-use clap::Parser;
 use voxtrace::{Camera, RenderOptions};
-use voxtrace_cli::atomic::{exit_with_error, remove_on_signal, same_file};
+use voxtrace_cli::atomic::{remove_on_signal, same_file};
 use voxtrace_cli::part::{fnv1a64, settings_text, write_part, Placement};
 use voxtrace_cli::stitch::{list, stitch};
 use voxtrace_cli::tiles::{frames_for_task, tile_name};
@@ -140,36 +137,13 @@ pub fn write_tile(out: impl Write, job: &TileJob, pixels: &[u32]) -> Result<(), 
     write_part(BufWriter::new(out), &job.placement, &job.settings, pixels)
 }
 
-/// Runs `voxtrace stitch` when it is the first argument; `None` leaves the
-/// arguments to the renderer.
-pub fn subcommand() -> Option<ExitCode> {
-    let mut argv = std::env::args_os();
-    let program = argv.next()?;
-    let rest: Vec<OsString> = argv.collect();
-    if rest.first().is_none_or(|first| first != "stitch") {
-        return None;
-    }
-    let argv: Vec<String> = std::iter::once(program.to_string_lossy().into_owned())
-        .chain(rest.iter().map(|a| a.to_string_lossy().into_owned()))
-        .collect();
-    let parsed = StitchArgs::try_parse_from(
-        std::iter::once(OsString::from(format!(
-            "{} stitch",
-            Path::new(&program).display()
-        )))
-        .chain(rest.into_iter().skip(1)),
-    );
-    let args = match parsed {
-        Ok(args) => args,
-        Err(e) => return Some(voxtrace_cli::errors::clap_failure(&e, &argv)),
-    };
-    Some(match run_stitch(&args) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(message) => exit_with_error(&message),
-    })
-}
-
-fn run_stitch(args: &StitchArgs) -> Result<(), String> {
+/// `voxtrace stitch`: reads the parts, assembles the frame and writes it
+/// whole to `--out` (or standard output), after every refusal.
+///
+/// # Errors
+/// One line naming the problem: a missing `--out` or part, an output that
+/// is one of the parts, a part that cannot be read or does not fit.
+pub fn run_stitch(args: &StitchArgs) -> Result<(), String> {
     let out = args
         .out
         .as_ref()

@@ -31,15 +31,12 @@ use voxtrace_cli::{
 };
 use voxtrace_flags::{describe, Boxes, Stage};
 
-use args::Args;
+use args::{Args, Command};
 use effects::{ignored_effects, ignored_flags, materials_of, render_options, unused_in_path};
 use progress::{Progress, Spinner};
 use view::camera_settings;
 
 fn main() -> ExitCode {
-    if let Some(code) = farm::subcommand() {
-        return code;
-    }
     let argv: Vec<String> = std::env::args_os()
         .map(|a| a.to_string_lossy().into_owned())
         .collect();
@@ -50,6 +47,12 @@ fn main() -> ExitCode {
         Ok(parsed) => parsed,
         Err(e) => return errors::clap_failure(&e, &argv),
     };
+    if let Some(Command::Stitch(stitch)) = &args.command {
+        return match farm::run_stitch(stitch) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(message) => exit_with_error(&message),
+        };
+    }
     // Before any output exists: an interrupted run then removes its
     // temporary files and leaves every output file as it was.
     match remove_on_signal().and_then(|()| run(&args, &matches)) {

@@ -4,7 +4,6 @@
 
 use std::path::PathBuf;
 
-use clap::Parser;
 use voxtrace_cli::tiles::{Grid, TaskIndex};
 
 /// The flags that make a render one task of a job array.
@@ -35,14 +34,9 @@ pub struct TileArgs {
     pub task_index: Option<TaskIndex>,
 }
 
-/// `voxtrace stitch PART... --out FILE [--allow-partial]`.
-#[derive(Debug, Parser)]
-#[command(
-    name = "voxtrace stitch",
-    version,
-    about = "Assemble the tiles of one frame (rendered with --tiles) into the full PNG, \
-             the same file a single render writes; refuses parts that do not fit together."
-)]
+/// `voxtrace stitch PART... --out FILE [--allow-partial]`: the flags of
+/// the [`Command::Stitch`](super::Command::Stitch) subcommand.
+#[derive(Debug, clap::Args)]
 pub struct StitchArgs {
     /// The part PNGs, in any order.
     // Both required, but checked by hand: clap would name them on a second
