@@ -10,18 +10,11 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+use common::run::entries;
+
 /// A fresh, empty directory of its own for each test.
 fn fresh_dir(name: &str) -> PathBuf {
     common::run::fresh_dir("atomic", name)
-}
-
-fn entries(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
 }
 
 /// Bytes that no render writes: any change to them is visible.

@@ -17,7 +17,7 @@ use std::os::unix::fs::{symlink, FileTypeExt};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
-use common::run::{assert_refused, fresh_dir};
+use common::run::{assert_refused, entries, fresh_dir};
 
 /// The flags of every small render here.
 const SMALL: [&str; 8] = [
@@ -36,15 +36,6 @@ fn render(out: &Path) -> Command {
     let mut command = Command::new(env!("CARGO_BIN_EXE_voxtrace"));
     command.args(SMALL).arg("--out").arg(out);
     command
-}
-
-fn entries(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
 }
 
 /// The image the small render writes to a regular file.
