@@ -10,8 +10,9 @@ use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 use common::limits::{check_contract, run_limited, tools_present};
+use common::parts::numbered_part;
 use common::run::{assert_refused, fresh_dir, stderr};
-use voxtrace_cli::part::{fnv1a64, write_part, Placement};
+use voxtrace_cli::part::write_part;
 use voxtrace_cli::tiles::Grid;
 
 /// A fresh empty directory for one test.
@@ -34,21 +35,9 @@ const SETTINGS: &str = "voxtrace=test subject=[terrain seed=1 size=30]";
 /// Writes tile `tile` of `grid` over a `width x height` frame into `path`,
 /// its pixel at (x, y) being `x + 1000 y`.
 fn write_tile(path: &Path, grid: Grid, width: u32, height: u32, tile: u32) {
-    let rect = grid.tile(width, height, tile).unwrap();
-    let placement = Placement {
-        frame_width: width,
-        frame_height: height,
-        grid,
-        tile,
-        rect,
-        frame_number: 0,
-        hash: fnv1a64(SETTINGS.as_bytes()),
-    };
-    let pixels: Vec<u32> = (rect.y..rect.y + rect.height)
-        .flat_map(|y| (rect.x..rect.x + rect.width).map(move |x| x + 1000 * y))
-        .collect();
+    let part = numbered_part(grid, width, height, tile, SETTINGS);
     let file = std::fs::File::create(path).unwrap();
-    write_part(file, &placement, SETTINGS, &pixels).unwrap();
+    write_part(file, &part.placement, &part.settings, &part.pixels).unwrap();
 }
 
 /// The two tiles of a 2x1 grid over a 20x10 frame, `t-0.png` and `t-1.png`

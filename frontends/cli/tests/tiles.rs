@@ -2,8 +2,11 @@
 //! frame exactly once, frame runs cover an animation exactly once, a part's
 //! metadata survives its PNG, and `assemble` refuses parts that do not fit.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
+use common::parts::numbered_part;
 use proptest::prelude::*;
 use voxtrace::Rect;
 use voxtrace_cli::part::{fnv1a64, read_part, settings_text, write_part, Part, Placement};
@@ -118,25 +121,7 @@ proptest! {
 /// (x, y) is `x + 1000 y`, with `settings` as their settings text.
 fn parts_of(grid: Grid, width: u32, height: u32, settings: &str) -> Vec<Part> {
     (0..grid.count())
-        .map(|tile| {
-            let rect = grid.tile(width, height, tile).unwrap();
-            let pixels = (rect.y..rect.y + rect.height)
-                .flat_map(|y| (rect.x..rect.x + rect.width).map(move |x| x + 1000 * y))
-                .collect();
-            Part {
-                placement: Placement {
-                    frame_width: width,
-                    frame_height: height,
-                    grid,
-                    tile,
-                    rect,
-                    frame_number: 0,
-                    hash: fnv1a64(settings.as_bytes()),
-                },
-                settings: settings.to_string(),
-                pixels,
-            }
-        })
+        .map(|tile| numbered_part(grid, width, height, tile, settings))
         .collect()
 }
 
