@@ -16,26 +16,11 @@
 use glam::{BVec3A, IVec3, Vec3A};
 
 use crate::geom::{IAabb, Ray};
-use crate::storage::walk::{directions, entry_cell, entry_key, exact_start, Key, Walk};
+use crate::storage::walk::{EntryCell, Key, Lanes, Walk};
 
 /// 1.5 * 2^23: added to a float below 2^22 in size, a sum whose last
 /// mantissa bit is worth 1.
 const ROUND: f32 = 12_582_912.0;
-
-/// `(floor(v), ceil(v))` per lane for `|v| < 2^22`, without libm's
-/// software rounding: adding and subtracting 1.5 * 2^23 rounds to the
-/// nearest integer exactly (round-to-nearest is IEEE's default on every
-/// target), and one compare corrects it. The same values as `floor` and
-/// `ceil`, but for the sign of a zero, which no use below can tell.
-#[inline]
-fn floor_and_ceil(v: Vec3A) -> (Vec3A, Vec3A) {
-    let nearest = (v + ROUND) - ROUND;
-    let one = |mask: BVec3A| Vec3A::select(mask, Vec3A::ONE, Vec3A::ZERO);
-    (
-        nearest - one(nearest.cmpgt(v)),
-        nearest + one(nearest.cmplt(v)),
-    )
-}
 
 /// `v` (whole numbers with `|v| <= 2^22`) as integers, read from the bits
 /// of `v + 1.5 * 2^23`: that sum lies in `[2^23, 2^24]`, where the float's
@@ -60,16 +45,28 @@ pub(super) struct Entry {
     pub(super) key: Key,
 }
 
+/// What the entry from outside found ([`Entry::outside`]).
+enum Outside {
+    /// The walk enters the region here.
+    Enters(Entry),
+    /// The ray misses the region.
+    Misses,
+    /// Not settled on lanes: `Walk::start` decides.
+    Unsure,
+}
+
 impl Entry {
-    /// The entry into `region` that [`Walk::start`] finds, or `None` when
-    /// the ray misses it.
+    /// The entry into `region` that [`Walk::start`] finds for the walk of
+    /// `ray` (whose lanes are `lanes`), or `None` when the ray misses it.
     #[inline(always)]
-    pub(super) fn new(ray: &Ray, region: &IAabb) -> Option<Entry> {
-        if let Some(entry) = Entry::inside(ray, region) {
+    pub(super) fn new(ray: &Ray, lanes: &Lanes, region: &IAabb) -> Option<Entry> {
+        if let Some(entry) = Entry::inside(lanes, region) {
             return Some(entry);
         }
-        if let Some(entry) = Entry::outside(ray, region) {
-            return entry;
+        match Entry::outside(lanes, region) {
+            Outside::Enters(entry) => return Some(entry),
+            Outside::Misses => return None,
+            Outside::Unsure => {}
         }
         let walk = Walk::start(ray, region)?;
         let step = walk.step_dir();
@@ -84,82 +81,67 @@ impl Entry {
 
     /// [`Walk::start`] for an origin strictly inside `region` on every
     /// axis, the common case of secondary rays, without its general
-    /// search: the start cell (floor of the origin, or ceil - 1 moving
-    /// down) is then inside, the walk enters nothing, and its key is the
-    /// start key of the highest moving axis whose origin lies on a plane.
-    /// Every coordinate is then within +-2^22, where `floor` and `ceil` are
-    /// exact on three lanes at once.
+    /// search: the start cell is then inside, the walk enters nothing, and
+    /// its key is the start key ([`crate::storage::walk::Start::key`]).
     #[inline]
-    fn inside(ray: &Ray, region: &IAabb) -> Option<Entry> {
-        let (o, d, inv) = ray.lanes();
+    fn inside(lanes: &Lanes, region: &IAabb) -> Option<Entry> {
+        let o = lanes.origin;
         let strictly_inside =
             (o.cmpgt(region.min.as_vec3a()) & o.cmplt(region.max.as_vec3a())).all();
         if !strictly_inside {
             return None;
         }
-        let (floor, ceil) = floor_and_ceil(o);
-        let moving = d.cmpne(Vec3A::ZERO) & inv.is_finite_mask();
-        let down = moving & d.cmplt(Vec3A::ZERO);
-        let cell = Vec3A::select(down, ceil - 1.0, floor);
+        let start = &lanes.start;
+        let (moving, down, cell) = (lanes.moving, start.down, start.cell_f);
         let exit = Vec3A::select(down, cell, cell + 1.0);
-        let next_t = Vec3A::select(moving, (exit - o) * inv, Vec3A::INFINITY);
-        let on_plane = (moving & floor.cmpeq(o)).bitmask();
-        let key = if on_plane == 0 {
-            Key {
-                t: f32::NEG_INFINITY,
-                axis: 0,
-            }
-        } else {
-            Key {
-                t: 0.0,
-                axis: (31 - on_plane.leading_zeros()) as u8,
-            }
-        };
+        let next_t = Vec3A::select(moving, (exit - o) * lanes.inv_dir, Vec3A::INFINITY);
         Some(Entry {
-            // (Within +-2^22, as the origin.)
-            cell: whole_numbers(cell),
+            cell: start.cell,
             moving,
             down,
             next_t,
-            key,
+            key: start.key(),
         })
     }
 
-    /// [`Walk::start`] for an origin outside `region` (and within 2^23 on
-    /// every axis): `Some` of its answer, or `None` for `Walk::start` to
-    /// find it: when the entry cell's check does not confirm its guess
-    /// (`storage/walk/entry.rs`), or the start cell is inside on every
-    /// axis (an origin on the box's face). On lanes: the start rule's
-    /// cell, the latest per-axis entry key, the cell there, its exit
-    /// crossings. Kept out of line: inlined, it keeps `new` from being
-    /// inlined into the walk, and the common case of secondary rays (an
-    /// origin inside) would pay for returning the entry through memory.
+    /// [`Walk::start`] for an origin outside `region`, on lanes: the latest
+    /// per-axis entry key, the cell there ([`Lanes::entry_cell`]), its exit
+    /// crossings. [`Outside::Unsure`] when the entry cell's check does not
+    /// confirm its guess, the start cell is inside on every axis (an origin
+    /// on the box's face) or the origin is too far out. Kept out of line:
+    /// inlined, it keeps `new` from being inlined into the walk, and the
+    /// common case of secondary rays (an origin inside) would pay for
+    /// returning the entry through memory.
     #[inline(never)]
-    fn outside(ray: &Ray, region: &IAabb) -> Option<Option<Entry>> {
-        let (o, d, inv) = ray.lanes();
-        let (up, down) = directions(ray);
-        let (start, on_plane) = exact_start(o, up, down)?;
-        let moving = up | down;
+    fn outside(lanes: &Lanes, region: &IAabb) -> Outside {
         let (lo, hi) = (region.min.as_vec3a(), region.max.as_vec3a());
-        let start_t = Vec3A::select(on_plane, Vec3A::ZERO, Vec3A::NEG_INFINITY);
-        let Some((key, _)) = entry_key(o, inv, (start, start_t), (up, down), (lo, hi)) else {
-            return Some(None);
+        let Some((key, starts_inside)) = lanes.entry_of(lo, hi) else {
+            return Outside::Misses;
         };
         if key.t == f32::INFINITY {
-            return Some(None);
+            return Outside::Misses;
         }
-        let Some(cell) = entry_cell(o, d, inv, start, (up, down), (lo, hi), key)? else {
-            return Some(None);
+        if starts_inside {
+            return Outside::Unsure;
+        }
+        let cell = match lanes.entry_cell(lo, hi, key) {
+            EntryCell::In(cell) => cell,
+            EntryCell::Beside => return Outside::Misses,
+            EntryCell::Unsure => return Outside::Unsure,
         };
-        let exit = Vec3A::select(up, cell + 1.0, cell);
-        let next_t = Vec3A::select(moving, (exit - o) * inv, Vec3A::INFINITY);
-        Some(Some(Entry {
+        let exit = Vec3A::select(lanes.start.up, cell + 1.0, cell);
+        let next_t = Vec3A::select(
+            lanes.moving,
+            (exit - lanes.origin) * lanes.inv_dir,
+            Vec3A::INFINITY,
+        );
+        Outside::Enters(Entry {
             // (Within +-2^22, as the region.)
             cell: whole_numbers(cell),
-            moving,
-            down,
+            moving: lanes.moving,
+            down: lanes.start.down,
             next_t,
             key,
-        }))
+        })
     }
 }

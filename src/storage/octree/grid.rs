@@ -10,7 +10,7 @@ use crate::storage::walk::EXACT;
 
 /// 2^log as an exact float, for `log` below 128.
 #[inline]
-pub(super) fn pow2(log: u32) -> f32 {
+pub(crate) fn pow2(log: u32) -> f32 {
     f32::from_bits((127 + log) << 23)
 }
 

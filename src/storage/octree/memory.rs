@@ -10,12 +10,12 @@ use glam::{IVec3, Vec3A};
 use crate::geom::{IAabb, Ray, MAX_COORD};
 use crate::scene::{WalkMemory, MEMORY_PATH};
 use crate::storage::octree::grid::{pow2, whole};
-use crate::storage::octree::lanes::Lanes;
 use crate::storage::octree::node::{brick_bit, child_rank, Node, NodeKind};
-#[cfg(doc)]
-use crate::storage::octree::placed::Placed;
 use crate::storage::octree::OctreeScene;
-use crate::storage::walk::{Key, Walk};
+#[cfg(doc)]
+use crate::storage::walk::placed::Placed;
+use crate::storage::walk::Lanes;
+use crate::storage::walk::{EntryCell, Key, Walk};
 
 /// Entries of the path: the largest root has side `2 * MAX_COORD` = 2^23,
 /// and halving it down to side-4 bricks takes depths 0 to 21.
@@ -40,9 +40,9 @@ pub(super) struct Begun {
     pub(super) node_at: Vec3A,
     /// The key the walk began at when it is no crossing (a later
     /// distance): a hit in the cell the ray is in there reports the
-    /// crossing that entered the cell instead. Else NaN, which no key
-    /// equals.
-    pub(super) placed_key: Key,
+    /// crossing that entered the cell instead. `None` for a walk begun at
+    /// the crossing it entered by.
+    pub(super) placed_key: Option<Key>,
 }
 
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
@@ -126,20 +126,24 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                 depth,
                 node,
                 node_at: corner,
-                placed_key: later,
+                placed_key: Some(later),
             });
         }
         // Begun at the region's entry: `entry` is known here.
         let (enters, starts_inside) = entry?;
         let (cell, key) = if starts_inside {
-            (lanes.start.as_ivec3(), enters)
-        } else if let Some(cell) = lanes.entry_cell(region_lo, region_hi, enters) {
-            // (None: beside the region on an axis, the ray passes it by.)
-            (cell?.as_ivec3(), enters)
+            (lanes.start.cell, enters)
         } else {
-            let mut walk = Walk::unplaced(ray, &region);
-            walk.place_from(t_start)?;
-            (walk.cell(), walk.key())
+            match lanes.entry_cell(region_lo, region_hi, enters) {
+                EntryCell::In(cell) => (cell.as_ivec3(), enters),
+                // Beside the region on an axis: the ray passes it by.
+                EntryCell::Beside => return None,
+                EntryCell::Unsure => {
+                    let mut walk = Walk::unplaced(ray, &region);
+                    walk.place_from(t_start).ok()?;
+                    (walk.cell(), walk.key())
+                }
+            }
         };
         let (depth, node) = self.recall(cell - min, memory);
         let log = root_log - depth as u32;
@@ -150,10 +154,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             depth,
             node,
             node_at: (min + ((cell - min) >> log << log)).as_vec3a(),
-            placed_key: Key {
-                t: f32::NAN,
-                axis: 0,
-            },
+            placed_key: None,
         })
     }
 

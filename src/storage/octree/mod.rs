@@ -17,7 +17,7 @@ use crate::frustum::Frustum;
 use crate::geom::{IAabb, Ray};
 use crate::scene::{Hit, Scene, StartSeen, Traced, WalkMemory};
 use crate::storage::octree::node::{brick_local, child_offset, NodeKind, BRICK};
-use crate::storage::walk::Walk;
+use crate::storage::walk::Start;
 use crate::voxel::Palette;
 
 pub use crate::storage::octree::node::Node;
@@ -26,11 +26,9 @@ pub(crate) mod beam;
 pub(crate) mod build;
 #[cfg(feature = "rayon")]
 pub(crate) mod build_par;
-mod grid;
-pub(crate) mod lanes;
+pub(crate) mod grid;
 mod memory;
 pub(crate) mod node;
-mod placed;
 pub(crate) mod trace;
 
 /// How many nodes and material bytes an octree needs
@@ -174,12 +172,13 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
         // that cell, so the memory answers them all after the first.
         if t_start == 0.0 {
             let owner = self as *const Self as usize;
-            let key = StartSeen::key_of(ray, Walk::start_class(ray));
+            let start = Start::of(ray);
+            let key = StartSeen::key_of(ray, start.class());
             let seen = memory.start;
             let hit = if seen.owner == owner && seen.key == key {
                 seen.hit
             } else {
-                let (cell, face) = Walk::start_cell(ray);
+                let (cell, face) = (start.cell, start.face());
                 let material = self.material_with(cell, memory);
                 let hit = match material {
                     0 => None,

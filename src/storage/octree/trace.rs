@@ -21,11 +21,11 @@ use glam::{IVec3, Vec3A};
 use crate::geom::{IAabb, Ray};
 use crate::scene::{Hit, Traced, WalkMemory};
 use crate::storage::octree::grid::{changed_bits, cube_at, pow2, spread, whole};
-use crate::storage::octree::lanes::Lanes;
 use crate::storage::octree::memory::{Begun, PATH};
 use crate::storage::octree::node::{child_rank, BrickMaterials, Node, NodeKind, BRICK, GROUP};
 use crate::storage::octree::OctreeScene;
 use crate::storage::walk::Key;
+use crate::storage::walk::Lanes;
 
 /// The cube of side 2^log at the corner `cube` (exact floats) as the box
 /// a visitor is shown.
@@ -234,8 +234,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                 // the region's face is not left yet; its cells past the
                 // face are empty anyway.
                 let left = if leaves_region.axis == exit.axis {
-                    let beyond = (lanes.up & next.cmpge(region_hi))
-                        | (lanes.down & (next + side).cmple(region_lo));
+                    let beyond = (lanes.start.up & next.cmpge(region_hi))
+                        | (lanes.start.down & (next + side).cmple(region_lo));
                     beyond.bitmask() >> axis & 1 != 0
                 } else {
                     leaves_region.lt(exit)
@@ -294,9 +294,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         pos: IVec3,
         material: u8,
         steps: u32,
-        placed_key: Key,
+        placed_key: Option<Key>,
     ) -> Traced {
-        let key = if key == placed_key {
+        let key = if placed_key == Some(key) {
             lanes.entry_key_of(pos.as_vec3a())
         } else {
             key

@@ -37,14 +37,22 @@ fn pick(mask: BVec3A, a: IVec3, b: IVec3) -> IVec3 {
     )
 }
 
+/// What a placement on three lanes decided.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Guess {
+    /// Placed in the cell the ray is in at the key, with its entry key.
+    Placed,
+    /// The ray has left the volume by the key.
+    Left,
+    /// A guess is off (nothing changed): the stepwise search decides.
+    Unsure,
+}
+
 impl Walk {
     /// What `settle_all` does, decided on three lanes when every moving
-    /// axis' guess checks out: `Some(true)` placed in the cell the ray is in
-    /// at `key` (with its entry key), `Some(false)` when the ray has left
-    /// the volume by `key`, `None` (nothing changed) when a guess is off
-    /// and the stepwise search must decide.
+    /// axis' guess checks out ([`Guess`]).
     #[inline]
-    pub(super) fn place_by_guess(&mut self, key: Key) -> Option<bool> {
+    pub(super) fn place_by_guess(&mut self, key: Key) -> Guess {
         let (origin, inv_dir) = (self.origin, self.inv_dir);
         // Cell coordinates as floats, all on four lanes: exact, since every
         // coordinate below lies within the volume (|c| <= 2^22 + 1) but a
@@ -78,10 +86,10 @@ impl Walk {
         let entered = c.cmpeq(from) | keys_before(entry_t, key);
         let not_left = at_limit | !keys_before(exit_t, key);
         if (!(entered & not_left) & moving).any() {
-            return None;
+            return Guess::Unsure;
         }
         if (at_limit & moving).any() {
-            return Some(false);
+            return Guess::Left;
         }
         // Placed: the cell, its entry key (the latest of the moving axes'
         // entries, ties to the highest axis, as `Key::lt` orders them; a
@@ -89,12 +97,13 @@ impl Walk {
         // not move keeps its start.
         self.key = latest(Vec3A::select(moving, entry_t, Vec3A::NEG_INFINITY));
         self.cell = pick(moving, c.as_ivec3(), self.cell);
-        Some(true)
+        Guess::Placed
     }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::Guess;
     use crate::storage::walk::test_rays::Rng;
     use crate::storage::walk::{Key, Walk};
 
@@ -139,11 +148,12 @@ mod tests {
             let mut guessed = walk.clone();
             let mut searched = walk.clone();
             let expected = searched.settle_stepwise(key);
-            let Some(placed) = guessed.place_by_guess(key) else {
-                continue;
+            let placed = match guessed.place_by_guess(key) {
+                Guess::Unsure => continue,
+                guess => guess == Guess::Placed,
             };
             decided += 1;
-            assert_eq!(placed, expected.is_some(), "{ray:?} {bounds:?} {key:?}");
+            assert_eq!(placed, expected.is_ok(), "{ray:?} {bounds:?} {key:?}");
             if placed {
                 assert_eq!(guessed.cell, searched.cell, "{ray:?} {bounds:?} {key:?}");
                 assert_eq!(guessed.key, searched.key, "{ray:?} {bounds:?} {key:?}");

@@ -40,12 +40,15 @@ use crate::geom::{Face, IAabb};
 
 mod entry;
 mod guess;
+mod lanes;
+pub(crate) mod placed;
 mod start;
 #[cfg(test)]
 pub(crate) mod test_rays;
 
-pub(crate) use entry::{entry_cell, entry_key, AXES};
-pub(crate) use start::{directions, exact_start, start_lanes, EXACT};
+pub(crate) use entry::{EntryCell, AXES};
+pub(crate) use lanes::Lanes;
+pub(crate) use start::{Start, EXACT};
 
 /// A crossing's place in the ray's visiting order: by time, then by axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -67,6 +70,11 @@ impl Key {
         self.t < other.t || (self.t == other.t && self.axis < other.axis)
     }
 }
+
+/// A walk's placement found the ray outside its volume: it misses the
+/// volume, or has left it by the key it was placed at.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Missed;
 
 /// Most moves (single cell steps or jumps over empty boxes) any ray makes in `bounds`.
 #[must_use]

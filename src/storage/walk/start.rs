@@ -8,7 +8,8 @@ use glam::{BVec3A, IVec3, Vec3A};
 
 use crate::geom::{Face, IAabb, Ray};
 use crate::math::floor_cell;
-use crate::storage::walk::{Key, Walk};
+use crate::storage::walk::guess::Guess;
+use crate::storage::walk::{Key, Missed, Walk};
 
 impl Walk {
     /// Starts a walk of `ray` through the volume `bounds`, or `None` when the
@@ -26,9 +27,8 @@ impl Walk {
     #[inline(always)]
     pub(crate) fn unplaced(ray: &Ray, bounds: &IAabb) -> Walk {
         let (origin, dir, inv_dir) = ray.lanes();
-        let (step, start, start_keys) = start_rule(ray);
-        let step = IVec3::from_array(step);
-        let start = IVec3::from_array(start);
+        let begins = Start::of(ray);
+        let (step, start, start_keys) = (begins.step(), begins.cell, begins.keys());
         Walk {
             origin,
             dir,
@@ -48,11 +48,11 @@ impl Walk {
     /// [`Walk::start`] does, but where the ray is at the key `(t_start, x)`
     /// if it enters the volume before that: in the cell reached after
     /// every crossing strictly before that key, entered by the latest of
-    /// its per-axis entry crossings, as single steps would leave it. `None`
-    /// when the ray has left the volume by then. Walking on from there
-    /// finds the same hit as walking from the start, provided no solid
-    /// cell is entered before `t_start`.
-    pub(crate) fn place_from(&mut self, t_start: f32) -> Option<()> {
+    /// its per-axis entry crossings, as single steps would leave it.
+    /// [`Missed`] when the ray misses the volume or has left it by then.
+    /// Walking on from there finds the same hit as walking from the start,
+    /// provided no solid cell is entered before `t_start`.
+    pub(crate) fn place_from(&mut self, t_start: f32) -> Result<(), Missed> {
         // At 0 or before, the start is already where the ray is.
         let not_before = if t_start > 0.0 {
             Key {
@@ -65,33 +65,10 @@ impl Walk {
         self.enter(not_before)
     }
 
-    /// The cell a ray starts in, by the start rule, and the face a hit in
-    /// it reports (its distance is 0): what a walk from the start reports
-    /// when its first cell is solid, without the walk.
-    pub(crate) fn start_cell(ray: &Ray) -> (IVec3, Option<Face>) {
-        let (step, start, on_plane) = start_lanes(ray);
-        // The latest start key is that of the highest axis on its plane.
-        let on_plane = on_plane.bitmask();
-        let face = (on_plane != 0).then(|| {
-            let axis = (u32::BITS - 1 - on_plane.leading_zeros()) as usize;
-            Face::entered(axis, step[axis] > 0)
-        });
-        (start, face)
-    }
-
-    /// The part of a ray's direction the start rule reads (which axes it
-    /// moves up along, which down), as six bits: rays from one origin with
-    /// equal classes start in the same cell with the same face.
-    #[inline]
-    pub(crate) fn start_class(ray: &Ray) -> u32 {
-        let (up, down) = directions(ray);
-        up.bitmask() | down.bitmask() << 3
-    }
-
     /// The walk in its first cell inside `bounds` at or after `not_before`.
     fn begin(ray: &Ray, bounds: &IAabb, not_before: Key) -> Option<Walk> {
         let mut walk = Walk::unplaced(ray, bounds);
-        walk.enter(not_before)?;
+        walk.enter(not_before).ok()?;
         Some(walk)
     }
 
@@ -99,7 +76,7 @@ impl Walk {
     /// volume, or to the cell the ray is in at `not_before` if it enters
     /// earlier.
     #[inline]
-    fn enter(&mut self, not_before: Key) -> Option<()> {
+    fn enter(&mut self, not_before: Key) -> Result<(), Missed> {
         let (lo, hi, start) = (self.lo, self.hi, self.start);
         // The key of entering the volume: the latest of the per-axis entries.
         let mut key_in = Key::BEFORE;
@@ -115,7 +92,7 @@ impl Walk {
             } else if s < 0 && c >= hi[axis] {
                 self.crossing(axis, hi[axis])
             } else {
-                return None; // outside on an axis and not moving toward it
+                return Err(Missed); // outside on an axis and not moving toward it
             };
             if key_in.lt(key) {
                 key_in = key;
@@ -123,7 +100,7 @@ impl Walk {
             }
         }
         if key_in.t == f32::INFINITY {
-            return None;
+            return Err(Missed);
         }
         if key_in.lt(not_before) {
             return self.settle_all(not_before);
@@ -136,7 +113,7 @@ impl Walk {
             for b in (0..3).filter(|&b| b != a && self.step[b] != 0) {
                 let far = if self.step[b] > 0 { hi[b] } else { lo[b] };
                 if self.crossing(b, far).lt(key_in) {
-                    return None;
+                    return Err(Missed);
                 }
             }
             self.cell[a] = if self.step[a] > 0 { lo[a] } else { hi[a] - 1 };
@@ -151,11 +128,11 @@ impl Walk {
                 self.cell[b] = self.settle(b, from, far + s, key_in).0;
             }
             if !self.inside() {
-                return None;
+                return Err(Missed);
             }
         }
         self.key = key_in;
-        Some(())
+        Ok(())
     }
 
     /// Places the walk, inside the volume by `key`, in the cell it is in at
@@ -163,17 +140,17 @@ impl Walk {
     /// volume, the cell's key the latest of their entry crossings. `None`
     /// when the ray has left the volume by `key`. Guessed on three lanes
     /// first (`guess.rs`), searched step by step when a guess is off.
-    fn settle_all(&mut self, key: Key) -> Option<()> {
+    fn settle_all(&mut self, key: Key) -> Result<(), Missed> {
         match self.place_by_guess(key) {
-            Some(true) => Some(()),
-            Some(false) => None,
-            None => self.settle_stepwise(key),
+            Guess::Placed => Ok(()),
+            Guess::Left => Err(Missed),
+            Guess::Unsure => self.settle_stepwise(key),
         }
     }
 
     /// [`Walk::settle_all`] by the search of each axis from its first
     /// coordinate inside the volume: what decides when a guess is off.
-    pub(super) fn settle_stepwise(&mut self, key: Key) -> Option<()> {
+    pub(super) fn settle_stepwise(&mut self, key: Key) -> Result<(), Missed> {
         let mut entered = Key::BEFORE;
         for axis in 0..3 {
             let s = self.step[axis];
@@ -189,7 +166,7 @@ impl Walk {
             };
             let (c, _) = self.settle(axis, from, far + s, key);
             if c == far + s {
-                return None;
+                return Err(Missed);
             }
             self.cell[axis] = c;
             let entry = self.entry_key(axis, c);
@@ -198,7 +175,7 @@ impl Walk {
             }
         }
         self.key = entered;
-        Some(())
+        Ok(())
     }
 
     /// Key of the crossing that enters coordinate `c` on a moving `axis`:
@@ -267,84 +244,156 @@ impl Walk {
     }
 }
 
-/// The start rule: for each axis, the step (+1, -1, or 0 for an axis the ray
-/// does not move along), the coordinate of the cell the ray is in just after
-/// `t = 0`, and the key of the crossing into it (`(0, axis)` when the
-/// origin lies on its entry plane, else before everything).
-#[inline]
-pub(crate) fn start_rule(ray: &Ray) -> ([i32; 3], [i32; 3], [Key; 3]) {
-    let (step, start, on_plane) = start_lanes(ray);
-    let on_plane = on_plane.bitmask();
-    let key = |axis: u8| {
-        if on_plane >> axis & 1 != 0 {
-            Key { t: 0.0, axis }
-        } else {
-            Key::BEFORE
-        }
-    };
-    (step.to_array(), start.to_array(), [key(0), key(1), key(2)])
-}
-
-/// The axes a ray moves up along, and down: an infinite reciprocal (a
-/// subnormal component) would turn a crossing at distance 0 into NaN; such
-/// an axis never reaches a plane in f32 anyway, so it counts as not moving.
-#[inline]
-pub(crate) fn directions(ray: &Ray) -> (BVec3A, BVec3A) {
-    let (_, dir, inv_dir) = ray.lanes();
-    let finite_inv = inv_dir.abs().cmplt(Vec3A::INFINITY);
-    let moving = dir.cmpne(Vec3A::ZERO) & finite_inv;
-    (
-        moving & dir.cmpgt(Vec3A::ZERO),
-        moving & dir.cmplt(Vec3A::ZERO),
-    )
-}
-
 /// 2^23: below it, casts of coordinates truncate exactly and integers and
 /// their neighbours are exact floats, so origins below it on every axis
-/// take the shortcuts (here the start rule on float lanes).
+/// take the start rule on float lanes.
 pub(crate) const EXACT: f32 = 8_388_608.0;
 
-/// The start rule on three lanes: the steps, the start cell, and the axes
-/// whose entry plane the origin lies on.
-#[inline]
-pub(crate) fn start_lanes(ray: &Ray) -> (IVec3, IVec3, BVec3A) {
-    let (origin, _, _) = ray.lanes();
-    let (up, down) = directions(ray);
-    let ones = |mask: BVec3A| {
-        let bits = mask.bitmask();
-        IVec3::new(
-            (bits & 1) as i32,
-            (bits >> 1 & 1) as i32,
-            (bits >> 2) as i32,
-        )
-    };
-    let steps = ones(up) - ones(down);
-    if let Some((start, on_plane)) = exact_start(origin, up, down) {
-        return (steps, start.as_ivec3(), on_plane);
-    }
-    // Truncation saturates as `floor_cell` does (saturated cells of huge
-    // origins lie outside every volume).
-    let truncated = origin.as_ivec3();
-    let floor = truncated.saturating_sub(ones(truncated.as_vec3a().cmpgt(origin)));
-    let on_plane = (up | down) & floor.as_vec3a().cmpeq(origin);
-    let start = floor.saturating_sub(ones(on_plane & down));
-    (steps, start, on_plane)
+/// Where a ray's walk starts, by the start rule: the one place it is
+/// computed, once per ray, for every walk of every storage.
+///
+/// The ray starts in the cell it is in just after `t = 0`: the floor of
+/// the origin, but on an axis whose plane the origin lies on and along
+/// which the ray moves down, the cell below. An axis whose direction has
+/// an infinite reciprocal (a subnormal component) never reaches a plane in
+/// `f32` and counts as not moving: its crossing at distance 0 would be NaN.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Start {
+    /// The axes the ray moves up along.
+    pub(crate) up: BVec3A,
+    /// The axes the ray moves down along.
+    pub(crate) down: BVec3A,
+    /// The start cell.
+    pub(crate) cell: IVec3,
+    /// The start cell as floats: exact below 2^23, and a saturated cell of
+    /// a huge origin keeps its order against every plane of a volume.
+    pub(crate) cell_f: Vec3A,
+    /// The moving axes whose entry plane into the start cell the origin
+    /// lies on: the start key is `(0, axis)` there, else before everything.
+    pub(crate) on_plane: BVec3A,
 }
 
-/// The start cell and the axes whose entry plane the origin lies on, on
-/// float lanes, for an origin below 2^23 on every axis (else `None`):
-/// there the floor, and one less, are exact floats of exact integers.
-/// `up` and `down` are the axes the ray moves along each way.
-#[inline]
-pub(crate) fn exact_start(origin: Vec3A, up: BVec3A, down: BVec3A) -> Option<(Vec3A, BVec3A)> {
-    if !origin.abs().cmplt(Vec3A::splat(EXACT)).all() {
-        return None;
+impl Start {
+    /// The start of `ray`'s walk: on float lanes for an origin below 2^23
+    /// on every axis (there the floor, and one less, are exact floats of
+    /// exact integers), else by saturating integer truncation.
+    #[inline]
+    pub(crate) fn of(ray: &Ray) -> Start {
+        let (origin, dir, inv_dir) = ray.lanes();
+        let finite_inv = inv_dir.abs().cmplt(Vec3A::INFINITY);
+        let moving = dir.cmpne(Vec3A::ZERO) & finite_inv;
+        let up = moving & dir.cmpgt(Vec3A::ZERO);
+        let down = moving & dir.cmplt(Vec3A::ZERO);
+        if origin.abs().cmplt(Vec3A::splat(EXACT)).all() {
+            // The start cell's entry plane is floor(o) moving up, ceil(o)
+            // moving down: the origin lies on it exactly when it is an
+            // integer, and then a ray moving down starts in the cell below.
+            let floor = origin.floor();
+            let on_plane = moving & floor.cmpeq(origin);
+            let below = Vec3A::select(on_plane & down, Vec3A::ONE, Vec3A::ZERO);
+            let cell_f = floor - below;
+            return Start {
+                up,
+                down,
+                cell: cell_f.as_ivec3(),
+                cell_f,
+                on_plane,
+            };
+        }
+        // Truncation saturates as `floor_cell` does (saturated cells of huge
+        // origins lie outside every volume).
+        let truncated = origin.as_ivec3();
+        let floor = truncated.saturating_sub(ones(truncated.as_vec3a().cmpgt(origin)));
+        let on_plane = moving & floor.as_vec3a().cmpeq(origin);
+        let cell = floor.saturating_sub(ones(on_plane & down));
+        Start {
+            up,
+            down,
+            cell,
+            cell_f: cell.as_vec3a(),
+            on_plane,
+        }
     }
-    // The start cell's entry plane is floor(o) moving up, ceil(o) moving
-    // down: the origin lies on it exactly when it is an integer, and then a
-    // ray moving down starts in the cell below.
-    let floor = origin.floor();
-    let on_plane = (up | down) & floor.cmpeq(origin);
-    let below = Vec3A::select(on_plane & down, Vec3A::ONE, Vec3A::ZERO);
-    Some((floor - below, on_plane))
+
+    /// The axes the ray moves along.
+    #[inline]
+    pub(crate) fn moving(&self) -> BVec3A {
+        self.up | self.down
+    }
+
+    /// Per axis: +1, -1, or 0 for an axis the ray does not move along.
+    #[inline]
+    pub(crate) fn step(&self) -> IVec3 {
+        ones(self.up) - ones(self.down)
+    }
+
+    /// The times of the start keys per axis: 0 on an axis whose entry
+    /// plane the origin lies on, else before everything.
+    #[inline]
+    pub(crate) fn key_times(&self) -> Vec3A {
+        Vec3A::select(self.on_plane, Vec3A::ZERO, Vec3A::NEG_INFINITY)
+    }
+
+    /// The start keys per axis: `(0, axis)` on an axis whose entry plane
+    /// the origin lies on, else [`Key::BEFORE`].
+    #[inline]
+    pub(crate) fn keys(&self) -> [Key; 3] {
+        let on_plane = self.on_plane.bitmask();
+        core::array::from_fn(|axis| {
+            if on_plane >> axis & 1 != 0 {
+                Key {
+                    t: 0.0,
+                    axis: axis as u8,
+                }
+            } else {
+                Key::BEFORE
+            }
+        })
+    }
+
+    /// The key the walk is in its start cell by: the latest start key,
+    /// that of the highest axis whose plane the origin lies on (before
+    /// everything when there is none).
+    #[inline]
+    pub(crate) fn key(&self) -> Key {
+        let on_plane = self.on_plane.bitmask();
+        if on_plane == 0 {
+            Key::BEFORE
+        } else {
+            Key {
+                t: 0.0,
+                axis: (u32::BITS - 1 - on_plane.leading_zeros()) as u8,
+            }
+        }
+    }
+
+    /// The face a hit in the start cell reports (its distance is 0): the
+    /// one [`Start::key`] enters by, `None` for an origin strictly inside.
+    #[inline]
+    pub(crate) fn face(&self) -> Option<Face> {
+        let key = self.key();
+        (key.t == 0.0).then(|| {
+            let axis = usize::from(key.axis);
+            Face::entered(axis, self.up.test(axis))
+        })
+    }
+
+    /// The part of the direction the start rule reads (which axes it moves
+    /// up along, which down), as six bits: rays from one origin with equal
+    /// classes start in the same cell with the same face.
+    #[inline]
+    pub(crate) fn class(&self) -> u32 {
+        self.up.bitmask() | self.down.bitmask() << 3
+    }
+}
+
+/// 1 on the lanes of `mask`, else 0, as integers.
+#[inline]
+fn ones(mask: BVec3A) -> IVec3 {
+    let bits = mask.bitmask();
+    IVec3::new(
+        (bits & 1) as i32,
+        (bits >> 1 & 1) as i32,
+        (bits >> 2) as i32,
+    )
 }

@@ -1,96 +1,50 @@
-//! `Lanes`: the octree's two questions of a ray's walk (`storage/walk/`)
-//! in four-lane form, answered with exactly the crossings, start rule and
-//! order of the walk: where the ray leaves a box (`Walk::exit_of`) and on
-//! which side of three midplanes it is at a key. Built once per ray.
+//! `Lanes`: a ray's walk (`storage/walk/`) in four-lane form, the one
+//! form every storage's walk keeps its ray in. Built once per ray from the
+//! ray and its [`Start`]; it answers the questions a walk asks with
+//! exactly the crossings, start rule and order of [`Walk`]: where the ray
+//! enters a box (`entry.rs`) and leaves it, which key enters a cell, and on
+//! which side of three midplanes it is at a key.
 
 use glam::{BVec3A, Vec3A};
 
 use crate::geom::{Face, Ray};
 use crate::storage::octree::grid::pow2;
-use crate::storage::octree::placed::Placed;
+use crate::storage::walk::placed::Placed;
 #[cfg(doc)]
 use crate::storage::walk::Walk;
-use crate::storage::walk::{
-    directions, entry_cell, entry_key, exact_start, latest, start_lanes, Key, AXES,
-};
+use crate::storage::walk::{latest, Key, Start, AXES};
 
-/// A ray's walk, reduced to what the octree asks of it.
+/// A ray's walk on four lanes: the ray, where it starts, and its steps.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Lanes {
-    origin: Vec3A,
-    dir: Vec3A,
-    inv_dir: Vec3A,
-    /// The start cell, as floats: exact below 2^24, and a saturated cell of
-    /// a huge origin keeps its order against every plane of a volume.
-    pub(crate) start: Vec3A,
-    /// The times of the start keys: 0 on an axis whose entry plane the
-    /// origin lies on, else before everything.
-    start_t: Vec3A,
+    pub(crate) origin: Vec3A,
+    pub(crate) dir: Vec3A,
+    pub(crate) inv_dir: Vec3A,
+    /// Where the walk starts, by the start rule.
+    pub(crate) start: Start,
     /// The walk's steps as floats: +1, -1, or 0 on an axis it does not
     /// move along.
     pub(crate) step: Vec3A,
-    pub(crate) up: BVec3A,
-    pub(crate) down: BVec3A,
-    moving: BVec3A,
+    /// The axes the walk moves along.
+    pub(crate) moving: BVec3A,
 }
 
 impl Lanes {
-    /// The lanes of a walk of `ray`: its start rule ([`start_lanes`]) and
-    /// its crossings.
+    /// The lanes of the walk of `ray`: its start ([`Start::of`]) and its
+    /// crossings. The one place a walk of any storage begins.
     #[inline]
     pub(crate) fn of(ray: &Ray) -> Lanes {
         let (origin, dir, inv_dir) = ray.lanes();
-        let (up, down) = directions(ray);
-        // On float lanes but for huge origins (then from the integer rule).
-        let (start, on_plane) = exact_start(origin, up, down).unwrap_or_else(|| {
-            let (_, start, on_plane) = start_lanes(ray);
-            (start.as_vec3a(), on_plane)
-        });
+        let start = Start::of(ray);
         let one = |mask| Vec3A::select(mask, Vec3A::ONE, Vec3A::ZERO);
         Lanes {
             origin,
             dir,
             inv_dir,
             start,
-            start_t: Vec3A::select(on_plane, Vec3A::ZERO, Vec3A::NEG_INFINITY),
-            step: one(up) - one(down),
-            up,
-            down,
-            moving: up | down,
+            step: one(start.up) - one(start.down),
+            moving: start.moving(),
         }
-    }
-
-    /// The key at which the ray enters the box `[lo, hi)` (exact floats),
-    /// as the walk's entry computes it ([`entry_key`]), and whether the
-    /// start cell is inside on every axis (then the walk begins there).
-    /// `None` when the start is outside on an axis the ray does not move
-    /// toward; `+inf` when it never gets in.
-    #[inline]
-    pub(crate) fn entry_of(&self, lo: Vec3A, hi: Vec3A) -> Option<(Key, bool)> {
-        entry_key(
-            self.origin,
-            self.inv_dir,
-            (self.start, self.start_t),
-            (self.up, self.down),
-            (lo, hi),
-        )
-    }
-
-    /// The cell a walk is in when it enters the box `[lo, hi)` (exact
-    /// floats) from outside at `enters` ([`Lanes::entry_of`]'s key), as
-    /// [`entry_cell`] finds it (`Some(None)`: the ray misses the box);
-    /// `None` when the caller must ask the walk.
-    #[inline]
-    pub(crate) fn entry_cell(&self, lo: Vec3A, hi: Vec3A, enters: Key) -> Option<Option<Vec3A>> {
-        entry_cell(
-            self.origin,
-            self.dir,
-            self.inv_dir,
-            self.start,
-            (self.up, self.down),
-            (lo, hi),
-            enters,
-        )
     }
 
     /// The key at which the ray enters `cell` (exact floats): the latest
@@ -100,9 +54,13 @@ impl Lanes {
     #[inline]
     pub(crate) fn entry_key_of(&self, cell: Vec3A) -> Key {
         // Moving up a cell is entered through its lower plane.
-        let entry_plane = Vec3A::select(self.up, cell, cell + 1.0);
+        let entry_plane = Vec3A::select(self.start.up, cell, cell + 1.0);
         let crossed = (entry_plane - self.origin) * self.inv_dir;
-        let t = Vec3A::select(cell.cmpeq(self.start), self.start_t, crossed);
+        let t = Vec3A::select(
+            cell.cmpeq(self.start.cell_f),
+            self.start.key_times(),
+            crossed,
+        );
         latest(Vec3A::select(self.moving, t, Vec3A::NEG_INFINITY))
     }
 
@@ -113,7 +71,7 @@ impl Lanes {
         if key.t == f32::NEG_INFINITY {
             (None, 0.0)
         } else {
-            let up = self.up.bitmask() >> key.axis & 1 != 0;
+            let up = self.start.up.bitmask() >> key.axis & 1 != 0;
             (Some(Face::entered(usize::from(key.axis), up)), key.t)
         }
     }
@@ -138,7 +96,7 @@ impl Lanes {
     /// earliest far-plane crossing, ties to the lowest axis.
     #[inline]
     pub(crate) fn exit_of(&self, lo: Vec3A, hi: Vec3A) -> Key {
-        let far = Vec3A::select(self.up, hi, lo);
+        let far = Vec3A::select(self.start.up, hi, lo);
         let t = Vec3A::select(
             self.moving,
             (far - self.origin) * self.inv_dir,
@@ -183,10 +141,10 @@ impl Lanes {
         let kt = Vec3A::splat(key.t);
         let lane = Vec3A::new(0.0, 1.0, 2.0).cmplt(Vec3A::splat(f32::from(key.axis)));
         let crossed = t.cmplt(kt) | (t.cmpeq(kt) & lane);
-        let behind_start = planes.cmple(self.start);
+        let behind_start = planes.cmple(self.start.cell_f);
         // Moving up: above once crossed; moving down: above until crossed;
         // not moving: where the start is.
-        (behind_start & !(self.down & crossed)) | (self.up & crossed)
+        (behind_start & !(self.start.down & crossed)) | (self.start.up & crossed)
     }
 
     /// Which half of the cube at `corner` (side 2^(half_log + 1)) holds the
@@ -227,7 +185,7 @@ mod tests {
 
     use super::Lanes;
     use crate::storage::walk::test_rays::Rng;
-    use crate::storage::walk::{Key, Walk};
+    use crate::storage::walk::{EntryCell, Key, Walk};
 
     /// The box's corners as the exact floats the octree keeps.
     fn lanes_of(b: crate::geom::IAabb) -> (Vec3A, Vec3A) {
@@ -255,7 +213,7 @@ mod tests {
             let (key, inside) = entry.expect("the walk entered the box");
             assert_eq!(key, walk.key(), "{ray:?} {bounds:?}");
             if inside {
-                assert_eq!(lanes.start.as_ivec3(), walk.cell(), "{ray:?} {bounds:?}");
+                assert_eq!(lanes.start.cell, walk.cell(), "{ray:?} {bounds:?}");
             }
             assert_eq!(lanes.exit_of(lo, hi), walk.exit_of(bounds.min, bounds.max));
         }
@@ -283,12 +241,17 @@ mod tests {
             }
             outside += 1;
             let walk = Walk::start(&ray, &bounds);
-            if let Some(cell) = lanes.entry_cell(lo, hi, key) {
-                answered += 1;
-                let Some(cell) = cell else {
+            let cell = match lanes.entry_cell(lo, hi, key) {
+                EntryCell::Unsure => None,
+                EntryCell::Beside => {
+                    answered += 1;
                     assert!(walk.is_none(), "{ray:?} {bounds:?}: entered");
                     continue;
-                };
+                }
+                EntryCell::In(cell) => Some(cell),
+            };
+            if let Some(cell) = cell {
+                answered += 1;
                 let walk = walk.expect("the lanes found an entry cell");
                 assert_eq!(cell.as_ivec3(), walk.cell(), "{ray:?} {bounds:?}");
                 assert_eq!(key, walk.key(), "{ray:?} {bounds:?}");
@@ -354,7 +317,7 @@ mod tests {
             let mut walk = Walk::start(&ray, &bounds).map(|_| Walk::unplaced(&ray, &bounds));
             let Some(walk) = walk.as_mut() else { continue };
             let key = Key { t, axis: 0 };
-            if walk.place_from(t).is_none() || !walk.key().lt(key) {
+            if walk.place_from(t).is_err() || !walk.key().lt(key) {
                 continue;
             }
             let cell = walk.cell();

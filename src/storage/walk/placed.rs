@@ -65,13 +65,12 @@ mod tests {
     use super::Placed;
     use crate::geom::{IAabb, Ray};
     use crate::storage::walk::test_rays::Rng;
-    use crate::storage::walk::{directions, Key, Walk};
+    use crate::storage::walk::{Key, Start, Walk};
 
     /// The placed point as `Lanes::placed_at` computes it.
     fn placed_at(ray: &Ray, t: f32) -> Placed {
         let (origin, dir, _) = ray.lanes();
-        let (up, down) = directions(ray);
-        Placed::at(origin, dir, up | down, t)
+        Placed::at(origin, dir, Start::of(ray).moving(), t)
     }
 
     /// Whether the claim holds for `ray` at `t` and the box `[lo, hi)`:
@@ -83,7 +82,7 @@ mod tests {
         }
         let key = Key { t, axis: 0 };
         let mut walk = Walk::unplaced(ray, &volume);
-        let placed = walk.place_from(t).is_some() && walk.key().lt(key);
+        let placed = walk.place_from(t).is_ok() && walk.key().lt(key);
         let cell = walk.cell();
         assert!(
             placed && cell.cmpge(lo).all() && cell.cmplt(hi).all(),
@@ -113,7 +112,7 @@ mod tests {
             let key = Key { t, axis: 0 };
             let mut walk = Walk::unplaced(&ray, &bounds);
             let (lo_f, hi_f) = (bounds.min.as_vec3a(), bounds.max.as_vec3a());
-            let inside = walk.place_from(t).is_some() && walk.key().lt(key);
+            let inside = walk.place_from(t).is_ok() && walk.key().lt(key);
             if placed.surely_in(lo_f, hi_f) {
                 assert!(inside, "{ray:?} {t} {bounds:?}: not in the box");
                 sure += 1;
