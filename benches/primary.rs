@@ -1,7 +1,7 @@
 //! What coherent primary rays give, inside one binary: the same flat frame
 //! traced ray by ray from the camera (`trace_counted`, what every pixel did
 //! before tiles) and tile by tile, each 16x16 tile's rays starting at the
-//! tile's clear distance (`clear_distance`, then `trace_from`), plus the
+//! tile's clear distance (`clear_distance`, then `trace_with` after it), plus the
 //! beam walks alone. Single-threaded, octree, the paper's camera, seed 1,
 //! scene sizes 50, 100 and 250. Both loops return the same hits (the tests
 //! hold that); only where the walks begin differs.
@@ -12,7 +12,9 @@
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use voxtrace::{Camera, CameraSettings, IAabb, OctreeScene, Scene, VoxelGenerator};
+use voxtrace::{
+    Camera, CameraSettings, IAabb, OctreeScene, Reach, Scene, VoxelGenerator, WalkMemory,
+};
 
 /// The renderer's tile side (`render/tiles.rs`).
 const TILE: u32 = 16;
@@ -63,7 +65,12 @@ fn tiled(scene: &impl Scene, camera: &Camera) -> f32 {
     for ((x0, y0, x1, y1), t0) in tiles(scene, camera) {
         for y in y0..y1 {
             for x in x0..x1 {
-                let traced = scene.trace_from(&camera.get_ray(x, y), t0);
+                let traced = scene.trace_with(
+                    &camera.get_ray(x, y),
+                    Reach::after(t0),
+                    &mut WalkMemory::new(),
+                    None,
+                );
                 sum += traced.hit.map_or(0.0, |h| h.t);
             }
         }

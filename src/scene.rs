@@ -66,15 +66,15 @@ pub(crate) const MEMORY_PATH: usize = 32;
 /// What a storage keeps between the walks of coherent rays (the pixels of
 /// a tile, the occlusion rays of neighbouring hits) so that a ray can begin
 /// where the previous one already knows its way: for the octree, the path
-/// of nodes down to where the last walk ended, and what the last start
-/// cell looked up held (rays from one origin start in one cell).
+/// of nodes down to where the last walk ended, and the last solid start
+/// cell a walk found (rays from one origin start in one cell).
 ///
 /// # Guarantees
 /// A memory only ever changes where a walk begins its work, never what it
-/// finds: [`Scene::trace_from_with`] and [`Scene::trace_within_with`] give
-/// the same hit, bit for bit, with a new memory, a used one, or one another
-/// scene wrote (it is tied to the scene that wrote it, which the lifetime
-/// keeps alive, and ignored by every other).
+/// finds: [`Scene::trace_with`] gives the same hit, bit for bit, with a
+/// new memory, a used one, or one another scene wrote (it is tied to the
+/// scene that wrote it, which the lifetime keeps alive, and ignored by
+/// every other).
 #[derive(Clone, Debug)]
 pub struct WalkMemory<'s> {
     /// Address of the scene that wrote the memory (0: none yet).
@@ -85,33 +85,27 @@ pub struct WalkMemory<'s> {
     pub(crate) depth: usize,
     /// A position inside the node at `depth`, relative to the tree's corner.
     pub(crate) corner: IVec3,
-    /// The answer of the last start-cell lookup: rays from one origin (a
-    /// camera's, or one hit point's occlusion rays) share it.
-    pub(crate) start: StartSeen,
+    /// The last walk that found its start cell solid: the rays that share
+    /// its origin and direction class (a camera's inside a voxel) have the
+    /// same hit.
+    pub(crate) solid_start: Option<SolidStart>,
     scene: PhantomData<&'s ()>,
 }
 
-/// What the start cell of a ray held, for the rays that share its origin
-/// and the direction class the start rule reads ([`StartSeen::key_of`]).
+/// A hit in a ray's start cell (at `t = 0`), for the rays that share its
+/// origin and the direction class the start rule reads
+/// ([`SolidStart::key_of`]).
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct StartSeen {
-    /// Address of the scene that answered (0: nothing seen yet).
+pub(crate) struct SolidStart {
+    /// Address of the scene that found it.
     pub(crate) owner: usize,
     /// The origin's bits and the direction class.
     pub(crate) key: [u32; 4],
-    /// The hit a walk reports when its start cell is solid, `None` when
-    /// that cell is empty.
-    pub(crate) hit: Option<Hit>,
+    /// The hit every walk with this key reports.
+    pub(crate) hit: Hit,
 }
 
-impl StartSeen {
-    /// Nothing seen yet.
-    const NONE: StartSeen = StartSeen {
-        owner: 0,
-        key: [0; 4],
-        hit: None,
-    };
-
+impl SolidStart {
     /// The start cell and its face depend on the origin and, per axis, on
     /// whether the ray moves along it and whether down: the start rule's
     /// whole input. Equal keys, equal start cells.
@@ -131,7 +125,7 @@ impl WalkMemory<'_> {
             path: [0; MEMORY_PATH],
             depth: 0,
             corner: IVec3::ZERO,
-            start: StartSeen::NONE,
+            solid_start: None,
             scene: PhantomData,
         }
     }
@@ -143,89 +137,93 @@ impl Default for WalkMemory<'_> {
     }
 }
 
+/// The stretch of a ray a trace searches, by distance along its unit
+/// direction.
+///
+/// # Guarantees
+/// A trace over a reach reports exactly the hit a trace over
+/// [`Reach::ALL`] reports when that hit's `t` is at most `max`, and
+/// nothing otherwise, provided the ray hits nothing before `clear` (the
+/// caller's promise, from [`Scene::clear_distance`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reach {
+    /// A distance before which the ray is known to hit nothing: the walk
+    /// may begin there (0: from the ray's origin).
+    pub clear: f32,
+    /// The farthest hit reported; the walk stops once it is past it.
+    pub max: f32,
+}
+
+impl Reach {
+    /// The whole ray.
+    pub const ALL: Reach = Reach {
+        clear: 0.0,
+        max: f32::INFINITY,
+    };
+
+    /// The whole ray, known to hit nothing before `clear`.
+    #[must_use]
+    pub const fn after(clear: f32) -> Reach {
+        Reach {
+            clear,
+            max: f32::INFINITY,
+        }
+    }
+
+    /// Hits at most `max` away (an occlusion or shadow ray's reach).
+    #[must_use]
+    pub const fn within(max: f32) -> Reach {
+        Reach { clear: 0.0, max }
+    }
+}
+
+/// What a walk shows each empty box it moves through, nearest first (the
+/// debug view draws their edges); when it returns `false` the walk stops
+/// there and reports no hit. `None`: nothing is shown, at no cost.
+pub type Visit<'v> = Option<&'v mut dyn FnMut(IAabb) -> bool>;
+
 /// A voxel storage the tracer can shoot rays into.
+///
+/// One method traces, [`Scene::trace_with`]; the others are built on it,
+/// so a storage or a wrapper cannot answer two ways.
 ///
 /// # Guarantees
 /// Every implementation in this crate returns, for every ray, the hit the
 /// shared cell walk defines (see the crate docs): the same voxel, face and
-/// `t`, bit for bit, whatever the storage. Tracing never allocates, never
-/// panics, and takes at most [`crate::max_steps`] moves.
+/// `t`, bit for bit, whatever the storage, the reach's `clear` or the
+/// memory. Tracing never allocates, never panics, and takes at most
+/// [`crate::max_steps`] moves.
 pub trait Scene {
     /// The volume the scene covers; nothing outside it is ever hit.
     fn bounds(&self) -> IAabb;
 
-    /// The first solid voxel along `ray`, with the walk's move count.
-    fn trace_counted(&self, ray: &Ray) -> Traced;
-
-    /// [`Scene::trace_counted`], also showing `visit` every empty box the
-    /// walk moves through, nearest first: cells for the dense array, node
-    /// cubes for the octree (the debug view draws their edges). When `visit`
-    /// returns `false` the walk stops there and reports no hit.
-    fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced;
+    /// The first solid voxel along `ray` within `reach`, with the walk's
+    /// move count (the moves made, from where the walk began).
+    ///
+    /// `memory` is what the walks of coherent rays share (the pixels of a
+    /// tile, in order; the occlusion rays of neighbouring hits): the
+    /// storage may begin from what the previous walk left there, and leaves
+    /// what the next one can use. `visit`, when given, is shown every empty
+    /// box the walk moves through (cells for the dense array, node cubes
+    /// for the octree), and then the walk covers the whole volume, not only
+    /// the box of the solid voxels.
+    fn trace_with<'s>(
+        &'s self,
+        ray: &Ray,
+        reach: Reach,
+        memory: &mut WalkMemory<'s>,
+        visit: Visit<'_>,
+    ) -> Traced;
 
     /// A distance before which no ray from the frustum's apex inside
     /// `frustum` hits a voxel: every such ray's hit, if any, has `t >=` the
     /// answer.
-    /// What lets a tile of primary rays skip the empty space they share.
-    /// The default knows nothing and answers 0.
+    /// What lets a tile of primary rays skip the empty space they share
+    /// ([`Reach::after`]). The default knows nothing and answers 0.
     #[inline]
     fn clear_distance(&self, frustum: &Frustum) -> f32 {
         let _ = frustum;
         0.0
-    }
-
-    /// [`Scene::trace_counted`] for a ray known to hit nothing before
-    /// `t_start` (from [`Scene::clear_distance`]): the same hit, bit for
-    /// bit, but the walk may begin at `t_start` (the move count then counts
-    /// only the moves made). The default walks from the start.
-    #[inline]
-    fn trace_from(&self, ray: &Ray, t_start: f32) -> Traced {
-        let _ = t_start;
-        self.trace_counted(ray)
-    }
-
-    /// [`Scene::trace_from`] for one of a run of coherent rays sharing
-    /// `memory` (the pixels of a tile, in order): the same hit, bit for bit;
-    /// the storage may begin from what the previous walk left in `memory`,
-    /// and leaves there what the next one can use. The default forgets.
-    #[inline]
-    fn trace_from_with<'s>(
-        &'s self,
-        ray: &Ray,
-        t_start: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> Traced {
-        let _ = memory;
-        self.trace_from(ray, t_start)
-    }
-
-    /// The first solid voxel along `ray`.
-    #[inline]
-    fn trace(&self, ray: &Ray) -> Option<Hit> {
-        self.trace_counted(ray).hit
-    }
-
-    /// The first solid voxel along `ray` if it is at most `t_max` away:
-    /// exactly `trace(ray).filter(|h| h.t <= t_max)`, but the storages of
-    /// this crate stop walking once `t_max` is passed (what makes short
-    /// occlusion rays cheap).
-    #[inline]
-    fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        self.trace(ray).filter(|h| h.t <= t_max)
-    }
-
-    /// [`Scene::trace_within`] for one of a run of coherent rays sharing
-    /// `memory` (the occlusion rays of neighbouring hits): the same hit, bit
-    /// for bit, as [`Scene::trace_from_with`] is for `trace_from`.
-    #[inline]
-    fn trace_within_with<'s>(
-        &'s self,
-        ray: &Ray,
-        t_max: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> Option<Hit> {
-        let _ = memory;
-        self.trace_within(ray, t_max)
     }
 
     /// Bytes of voxel storage this scene holds (arrays and palette).
@@ -238,13 +236,41 @@ pub trait Scene {
     fn materials(&self) -> Option<SceneMaterials<'_>> {
         None
     }
+
+    /// The first solid voxel along `ray`.
+    #[inline]
+    fn trace(&self, ray: &Ray) -> Option<Hit> {
+        self.trace_counted(ray).hit
+    }
+
+    /// The first solid voxel along `ray`, with the walk's move count.
+    #[inline]
+    fn trace_counted(&self, ray: &Ray) -> Traced {
+        self.trace_with(ray, Reach::ALL, &mut WalkMemory::new(), None)
+    }
+
+    /// The first solid voxel along `ray` if it is at most `t_max` away:
+    /// exactly `trace(ray).filter(|h| h.t <= t_max)`, but the walk stops
+    /// once `t_max` is passed (what makes short occlusion rays cheap).
+    #[inline]
+    fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        let memory = &mut WalkMemory::new();
+        self.trace_with(ray, Reach::within(t_max), memory, None).hit
+    }
+
+    /// [`Scene::trace_counted`], also showing `visit` every empty box the
+    /// walk moves through ([`Visit`]).
+    #[inline]
+    fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced {
+        self.trace_with(ray, Reach::ALL, &mut WalkMemory::new(), Some(visit))
+    }
 }
 
-/// The tracing methods of [`Scene`], every one but `materials`, each
-/// answered by the scene `$inner(self)` returns. The one list that
-/// wrappers of a scene forward (a reference, [`crate::WithMaterials`]), so
-/// that none of them falls back to a trait default that forgets what the
-/// wrapped storage knows: its clear distances, its walk memories.
+/// The methods of [`Scene`] a wrapper of a scene forwards (a reference,
+/// [`crate::WithMaterials`]): the one tracing method and those with a
+/// default, each answered by the scene `$inner(self)` returns, so that no
+/// wrapper falls back to a default that forgets what the wrapped storage
+/// knows (its clear distances).
 macro_rules! forward_tracing {
     ($inner:path) => {
         #[inline]
@@ -253,56 +279,19 @@ macro_rules! forward_tracing {
         }
 
         #[inline]
-        fn trace_counted(&self, ray: &$crate::geom::Ray) -> $crate::scene::Traced {
-            $inner(self).trace_counted(ray)
-        }
-
-        fn trace_visiting(
-            &self,
+        fn trace_with<'s>(
+            &'s self,
             ray: &$crate::geom::Ray,
-            visit: &mut dyn FnMut($crate::geom::IAabb) -> bool,
+            reach: $crate::scene::Reach,
+            memory: &mut $crate::scene::WalkMemory<'s>,
+            visit: $crate::scene::Visit<'_>,
         ) -> $crate::scene::Traced {
-            $inner(self).trace_visiting(ray, visit)
+            $inner(self).trace_with(ray, reach, memory, visit)
         }
 
         #[inline]
         fn clear_distance(&self, frustum: &$crate::frustum::Frustum) -> f32 {
             $inner(self).clear_distance(frustum)
-        }
-
-        #[inline]
-        fn trace_from(&self, ray: &$crate::geom::Ray, t_start: f32) -> $crate::scene::Traced {
-            $inner(self).trace_from(ray, t_start)
-        }
-
-        #[inline]
-        fn trace_from_with<'s>(
-            &'s self,
-            ray: &$crate::geom::Ray,
-            t_start: f32,
-            memory: &mut $crate::scene::WalkMemory<'s>,
-        ) -> $crate::scene::Traced {
-            $inner(self).trace_from_with(ray, t_start, memory)
-        }
-
-        #[inline]
-        fn trace(&self, ray: &$crate::geom::Ray) -> Option<$crate::scene::Hit> {
-            $inner(self).trace(ray)
-        }
-
-        #[inline]
-        fn trace_within(&self, ray: &$crate::geom::Ray, t_max: f32) -> Option<$crate::scene::Hit> {
-            $inner(self).trace_within(ray, t_max)
-        }
-
-        #[inline]
-        fn trace_within_with<'s>(
-            &'s self,
-            ray: &$crate::geom::Ray,
-            t_max: f32,
-            memory: &mut $crate::scene::WalkMemory<'s>,
-        ) -> Option<$crate::scene::Hit> {
-            $inner(self).trace_within_with(ray, t_max, memory)
         }
 
         fn storage_bytes(&self) -> usize {

@@ -5,7 +5,7 @@
 //! terrain), random cameras inside and outside the volume, and random tile
 //! sizes, every ray through every pixel of the tile (its center and a
 //! corner of its area) has no hit before the tile's clear distance by the
-//! brute-force reference, and `trace_from` at that distance returns the
+//! brute-force reference, and `trace_with` after that distance returns the
 //! reference's hit.
 
 mod common;
@@ -15,7 +15,8 @@ use common::sources::{solids, speckle};
 use proptest::prelude::*;
 use voxtrace::glam::Vec3;
 use voxtrace::{
-    Camera, CameraSettings, IAabb, OctreeScene, Projection, Scene, VoxelGenerator, VoxelSource,
+    Camera, CameraSettings, IAabb, OctreeScene, Projection, Reach, Scene, VoxelGenerator,
+    VoxelSource, WalkMemory,
 };
 
 /// Checks every pixel of the `tile_w x tile_h` tile at `(tx, ty)`.
@@ -45,7 +46,7 @@ fn check_tile<S: VoxelSource>(
                         hit.t
                     );
                 }
-                let traced = scene.trace_from(&ray, t0);
+                let traced = scene.trace_with(&ray, Reach::after(t0), &mut WalkMemory::new(), None);
                 prop_assert_eq!(as_ref_hit(traced.hit), expected, "pixel ({}, {})", x, y);
             }
         }
@@ -198,7 +199,7 @@ proptest! {
                         let ray = camera.get_ray(x, y);
                         let expected = scene.trace_counted(&ray);
                         prop_assert_eq!(
-                            scene.trace_from(&ray, t0).hit,
+                            scene.trace_with(&ray, Reach::after(t0), &mut WalkMemory::new(), None).hit,
                             expected.hit,
                             "pixel ({}, {}), clear distance {}", x, y, t0
                         );
@@ -324,7 +325,7 @@ fn extreme_cameras_and_spans_render_without_panics() {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(96))]
 
-    /// `trace_from` begun anywhere before the first solid voxel is left
+    /// `trace_with` begun anywhere before the first solid voxel is left
     /// finds the hit a walk from the start finds: before the voxel, inside
     /// it (the hit keeps the crossing that entered it), and exactly at
     /// plane crossings, where the start key ties with a plane's key.
@@ -361,7 +362,7 @@ proptest! {
                     continue;
                 }
             }
-            prop_assert_eq!(scene.trace_from(&ray, t0).hit, expected, "from {}", t0);
+            prop_assert_eq!(scene.trace_with(&ray, Reach::after(t0), &mut WalkMemory::new(), None).hit, expected, "from {}", t0);
         }
     }
 }

@@ -7,7 +7,7 @@ mod common;
 use common::rays::{ray_for, Rng};
 use common::sources::speckle;
 use voxtrace::glam::{IVec3, Vec3};
-use voxtrace::{DenseScene, IAabb, OctreeScene, Ray, Scene, VoxelGenerator, WalkMemory};
+use voxtrace::{DenseScene, IAabb, OctreeScene, Ray, Reach, Scene, VoxelGenerator, WalkMemory};
 
 /// Rays of a run: each the last one nudged (neighbouring pixels), or, now
 /// and then, a fresh one from anywhere.
@@ -31,7 +31,7 @@ fn run_of_rays(rng: &mut Rng, bounds: &IAabb, len: usize) -> Vec<Ray> {
 }
 
 /// Every ray of `rays` against `scene`: with the shared memories, the hit of
-/// the ray traced alone, for `trace_from_with` at 0 and `trace_within_with`
+/// the ray traced alone, for `trace_with` from 0 and within a reach
 /// at a reach that cuts some hits.
 fn assert_memory_changes_nothing<'s, S: Scene>(
     scene: &'s S,
@@ -42,12 +42,14 @@ fn assert_memory_changes_nothing<'s, S: Scene>(
     let reach = scene.bounds().size().max_element() as f32 / 3.0;
     for (i, ray) in rays.iter().enumerate() {
         let alone = scene.trace_counted(ray).hit;
-        let remembered = scene.trace_from_with(ray, 0.0, primary).hit;
+        let remembered = scene.trace_with(ray, Reach::after(0.0), primary, None).hit;
         assert_eq!(remembered, alone, "ray {i}: {ray:?}");
         if let (Some(a), Some(b)) = (alone, remembered) {
             assert_eq!(a.t.to_bits(), b.t.to_bits(), "ray {i}: {ray:?}");
         }
-        let cut = scene.trace_within_with(ray, reach, within);
+        let cut = scene
+            .trace_with(ray, Reach::within(reach), within, None)
+            .hit;
         assert_eq!(
             cut,
             scene.trace_within(ray, reach),
@@ -83,7 +85,9 @@ fn a_memory_shared_by_two_scenes_is_ignored_by_the_other() {
     for (i, ray) in rays.iter().enumerate() {
         // Alternate scenes ray by ray: each finds the other's path.
         let scene = if i % 2 == 0 { &sparse } else { &terrain };
-        let remembered = scene.trace_from_with(ray, 0.0, &mut memory).hit;
+        let remembered = scene
+            .trace_with(ray, Reach::after(0.0), &mut memory, None)
+            .hit;
         assert_eq!(remembered, scene.trace_counted(ray).hit, "ray {i}: {ray:?}");
     }
 }
@@ -123,7 +127,9 @@ fn rays_sharing_an_origin_share_only_what_their_start_rule_shares() {
         } else {
             &sparse_fill
         };
-        let remembered = scene.trace_from_with(&ray, 0.0, &mut memory).hit;
+        let remembered = scene
+            .trace_with(&ray, Reach::after(0.0), &mut memory, None)
+            .hit;
         assert_eq!(
             remembered,
             scene.trace_counted(&ray).hit,

@@ -11,7 +11,7 @@ use crate::render::path::bsdf::cone;
 use crate::render::path::{PathSetup, Rng};
 use crate::render::rays::secondary;
 use crate::render::stats::RayStats;
-use crate::scene::{Hit, Scene, WalkMemory};
+use crate::scene::{Hit, Reach, Scene, WalkMemory};
 
 /// The direct light at `hit` (entered through `face`) as a factor of the
 /// albedo: the outgoing radiance of a white Lambertian face there. Its
@@ -37,7 +37,8 @@ pub(super) fn light<'s, S: Scene + ?Sized, const EMIT: bool>(
             if let Some(shadow) = secondary(ray, hit, dir) {
                 stats.light_rays += 1;
                 if scene
-                    .trace_within_with(&shadow, f32::INFINITY, memory)
+                    .trace_with(&shadow, Reach::within(f32::INFINITY), memory, None)
+                    .hit
                     .is_none()
                 {
                     // A face of albedo c facing the sun reflects c * intensity.
@@ -109,7 +110,9 @@ fn emitter<'s, S: Scene + ?Sized>(
         return Vec3::ZERO;
     };
     stats.light_rays += 1;
-    let seen = scene.trace_within_with(&shadow, f32::INFINITY, memory);
+    let seen = scene
+        .trace_with(&shadow, Reach::within(f32::INFINITY), memory, None)
+        .hit;
     let Some(seen) = seen.filter(|h| h.pos == lamp) else {
         return Vec3::ZERO;
     };

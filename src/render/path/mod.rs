@@ -35,7 +35,7 @@ use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{pack_mean, sky, to_u8, SKY_HORIZON};
 use crate::render::stats::RayStats;
-use crate::scene::Scene;
+use crate::scene::{Reach, Scene};
 
 use bsdf::{glossy, microfacet};
 use glass::{through_glass, Glass};
@@ -206,7 +206,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
         let setup = self.setup;
         let mut ray = *camera_ray;
         let mut hit = scene
-            .trace_from_with(&ray, t_start, &mut memories.primary)
+            .trace_with(&ray, Reach::after(t_start), &mut memories.primary, None)
             .hit;
         *stats += primary(hit.as_ref());
         let first_t = hit.map(|h| h.t);
@@ -318,7 +318,14 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
             ray = next;
             // (Neighbouring pixels' bounces leave neighbouring hits: their
             // walks share a memory, as occlusion rays do.)
-            hit = scene.trace_within_with(&ray, f32::INFINITY, &mut memories.occlusion);
+            hit = scene
+                .trace_with(
+                    &ray,
+                    Reach::within(f32::INFINITY),
+                    &mut memories.occlusion,
+                    None,
+                )
+                .hit;
         }
         match (setup.fog, first_t) {
             (Some(fog), Some(t)) => {

@@ -19,7 +19,7 @@ use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{face_index, fog_blend, lit, pack, pack_mean, sky, FLAT_SKY};
 use crate::render::shader::{FrameJob, Kernel, Shader};
 use crate::render::stats::RayStats;
-use crate::scene::Scene;
+use crate::scene::{Reach, Scene};
 
 impl<'m> Shader<'_, 'm> {
     /// Runs `job` with the kernel compiled for this frame's effects.
@@ -133,7 +133,7 @@ impl Kernel for Flat<'_, '_, '_> {
     ) -> (u32, RayStats) {
         let ray = self.0.camera.get_ray(x, y);
         let hit = scene
-            .trace_from_with(&ray, t_start, &mut memory.primary)
+            .trace_with(&ray, Reach::after(t_start), &mut memory.primary, None)
             .hit;
         let rgba = hit.map_or_else(|| self.0.miss(FLAT_SKY), |h| pack(h.voxel.color));
         (rgba, primary(hit.as_ref()))
@@ -256,7 +256,9 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         memory: &mut Memories<'s>,
     ) -> (U8Vec3, RayStats) {
         let shader = self.0;
-        let hit = scene.trace_from_with(ray, t_start, &mut memory.primary).hit;
+        let hit = scene
+            .trace_with(ray, Reach::after(t_start), &mut memory.primary, None)
+            .hit;
         let mut stats = primary(hit.as_ref());
         let Some(hit) = hit else {
             return (sky(ray.dir()), stats);
@@ -266,7 +268,14 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         if SHADOWS && (EXACT || shader.options.shadows) && shader.sunlit[face] {
             stats.shadow_rays += 1;
             if let Some(shadow) = secondary(ray, &hit, shader.sun) {
-                let blocker = scene.trace_within_with(&shadow, f32::INFINITY, &mut memory.shadow);
+                let blocker = scene
+                    .trace_with(
+                        &shadow,
+                        Reach::within(f32::INFINITY),
+                        &mut memory.shadow,
+                        None,
+                    )
+                    .hit;
                 if blocker.is_some() {
                     light = u32::from(shader.shadowed[face]);
                 }
@@ -281,7 +290,14 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
                     let dir = around(entered, cosine_hemisphere(r2(j, key)));
                     let blocked = secondary(ray, &hit, dir)
                         .and_then(|r| {
-                            scene.trace_within_with(&r, ao.distance, &mut memory.occlusion)
+                            scene
+                                .trace_with(
+                                    &r,
+                                    Reach::within(ao.distance),
+                                    &mut memory.occlusion,
+                                    None,
+                                )
+                                .hit
                         })
                         .is_some();
                     open += u32::from(!blocked);

@@ -7,7 +7,7 @@ use glam::IVec3;
 
 use crate::error::Error;
 use crate::geom::{IAabb, Ray};
-use crate::scene::{Hit, Scene, Traced};
+use crate::scene::{Reach, Scene, Traced, Visit, WalkMemory};
 use crate::voxel::{Palette, VoxelSource};
 
 mod entry;
@@ -174,19 +174,26 @@ impl<B: AsRef<[u8]>> Scene for DenseScene<B> {
         self.bounds
     }
 
-    fn trace_counted(&self, ray: &Ray) -> Traced {
-        self.walk::<false>(ray, f32::INFINITY)
-    }
-
-    /// Walks the whole volume (not only the occupied box) with single
-    /// steps, so the debug view shows every cell a ray crosses.
-    fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced {
-        self.walk_visiting(ray, visit)
-    }
-
-    fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        let hit = self.walk::<true>(ray, t_max).hit;
-        hit.filter(|h| h.t <= t_max)
+    /// Walks only the occupied box, stepping with the loop of `walk.rs`;
+    /// with a visitor, the whole volume with single steps, so the debug
+    /// view shows every cell a ray crosses. The dense array keeps nothing
+    /// between walks and begins each at the ray's entry.
+    fn trace_with<'s>(
+        &'s self,
+        ray: &Ray,
+        reach: Reach,
+        _memory: &mut WalkMemory<'s>,
+        visit: Visit<'_>,
+    ) -> Traced {
+        let traced = match visit {
+            Some(visit) => self.walk_visiting(ray, visit),
+            None if reach.max == f32::INFINITY => self.walk::<false>(ray, f32::INFINITY),
+            None => self.walk::<true>(ray, reach.max),
+        };
+        Traced {
+            hit: traced.hit.filter(|h| h.t <= reach.max),
+            steps: traced.steps,
+        }
     }
 
     fn storage_bytes(&self) -> usize {

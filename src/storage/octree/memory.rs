@@ -233,7 +233,7 @@ mod tests {
 
     use crate::geom::{IAabb, Ray};
     use crate::material::Materials;
-    use crate::scene::{Scene, WalkMemory};
+    use crate::scene::{Reach, Scene, WalkMemory};
     use crate::source::terrain::VoxelGenerator;
     use crate::storage::octree::OctreeScene;
     use crate::with_materials::WithMaterials;
@@ -252,14 +252,20 @@ mod tests {
         for i in 0..64 {
             let dir = Vec3::new(-1.0 + i as f32 / 100.0, -0.8, -0.9 + i as f32 / 70.0);
             let ray = Ray::new(origin, dir).unwrap();
-            let traced = wrapped.trace_from_with(&ray, 0.5, &mut from);
-            assert_eq!(traced.hit, storage.trace_from(&ray, 0.5).hit, "{ray:?}");
-            let near = wrapped.trace_within_with(&ray, 30.0, &mut within);
+            let traced = wrapped.trace_with(&ray, Reach::after(0.5), &mut from, None);
+            let alone = storage.trace_with(&ray, Reach::after(0.5), &mut WalkMemory::new(), None);
+            assert_eq!(traced.hit, alone.hit, "{ray:?}");
+            let near = wrapped
+                .trace_with(&ray, Reach::within(30.0), &mut within, None)
+                .hit;
             assert_eq!(near, storage.trace_within(&ray, 30.0), "{ray:?}");
             hits += usize::from(traced.hit.is_some());
         }
         assert!(hits > 32, "only {hits} rays hit the terrain");
-        assert_eq!(from.owner, owner, "trace_from_with forgot the memory");
-        assert_eq!(within.owner, owner, "trace_within_with forgot the memory");
+        assert_eq!(from.owner, owner, "a clear walk forgot the memory");
+        assert_eq!(
+            within.owner, owner,
+            "a walk within a reach forgot the memory"
+        );
     }
 }

@@ -15,7 +15,7 @@ use glam::IVec3;
 
 use crate::frustum::Frustum;
 use crate::geom::{IAabb, Ray};
-use crate::scene::{Hit, Scene, StartSeen, Traced, WalkMemory};
+use crate::scene::{Reach, Scene, SolidStart, Traced, Visit, WalkMemory};
 use crate::storage::octree::node::{brick_local, child_offset, NodeKind, BRICK};
 use crate::storage::walk::Start;
 use crate::voxel::Palette;
@@ -136,6 +136,15 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     }
 }
 
+/// `traced` without a hit farther than `max`.
+#[inline]
+fn within(traced: Traced, max: f32) -> Traced {
+    Traced {
+        hit: traced.hit.filter(|h| h.t <= max),
+        steps: traced.steps,
+    }
+}
+
 /// The visitor of every trace but the debug view's: never stops the walk.
 fn keep_walking(_: IAabb) -> bool {
     true
@@ -146,80 +155,48 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
         self.bounds
     }
 
-    fn trace_counted(&self, ray: &Ray) -> Traced {
-        let memory = &mut WalkMemory::new();
-        self.walk(ray, self.occupied, 0.0, f32::INFINITY, keep_walking, memory)
+    fn trace_with<'s>(
+        &'s self,
+        ray: &Ray,
+        reach: Reach,
+        memory: &mut WalkMemory<'s>,
+        visit: Visit<'_>,
+    ) -> Traced {
+        let Reach { clear, max } = reach;
+        if let Some(visit) = visit {
+            // The whole volume (not only the occupied box), so the debug
+            // view shows every box of the tree a ray crosses.
+            let traced = self.walk(ray, self.bounds, clear, max, visit, memory);
+            return within(traced, max);
+        }
+        // Rays sharing an origin and a direction class (a camera's) share
+        // their start cell: once a walk has found it solid, the memory
+        // answers the rest without a walk (a camera inside a voxel).
+        let owner = self as *const Self as usize;
+        let from_start = clear == 0.0;
+        if let (true, Some(seen)) = (from_start, memory.solid_start) {
+            if seen.owner == owner && seen.key == SolidStart::key_of(ray, Start::class_of(ray)) {
+                return within(
+                    Traced {
+                        hit: Some(seen.hit),
+                        steps: 0,
+                    },
+                    max,
+                );
+            }
+        }
+        let traced = self.walk(ray, self.occupied, clear, max, keep_walking, memory);
+        if let Some(hit) = traced.hit.filter(|h| from_start && h.t == 0.0) {
+            // (A hit at 0 is in the start cell: every crossing at 0 is a
+            // plane the origin lies on, which the start rule has crossed.)
+            let key = SolidStart::key_of(ray, Start::class_of(ray));
+            memory.solid_start = Some(SolidStart { owner, key, hit });
+        }
+        within(traced, max)
     }
 
     fn clear_distance(&self, frustum: &Frustum) -> f32 {
         self.beam_distance(frustum)
-    }
-
-    fn trace_from(&self, ray: &Ray, t_start: f32) -> Traced {
-        self.trace_from_with(ray, t_start, &mut WalkMemory::new())
-    }
-
-    fn trace_from_with<'s>(
-        &'s self,
-        ray: &Ray,
-        t_start: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> Traced {
-        // A clear distance of 0 mostly means the camera touches a solid
-        // voxel, and then most rays hit the cell they start in: one lookup
-        // answers them as the walk would, without building it.
-        // Rays sharing an origin (a camera's) and a direction class share
-        // that cell, so the memory answers them all after the first.
-        if t_start == 0.0 {
-            let owner = self as *const Self as usize;
-            let start = Start::of(ray);
-            let key = StartSeen::key_of(ray, start.class());
-            let seen = memory.start;
-            let hit = if seen.owner == owner && seen.key == key {
-                seen.hit
-            } else {
-                let (cell, face) = (start.cell, start.face());
-                let material = self.material_with(cell, memory);
-                let hit = match material {
-                    0 => None,
-                    m => Hit::from_palette(&self.palette, cell, face, 0.0, m),
-                };
-                memory.start = StartSeen { owner, key, hit };
-                hit
-            };
-            if hit.is_some() {
-                return Traced { hit, steps: 0 };
-            }
-        }
-        self.walk(
-            ray,
-            self.occupied,
-            t_start,
-            f32::INFINITY,
-            keep_walking,
-            memory,
-        )
-    }
-
-    /// Walks the whole volume (not only the occupied box), so the debug
-    /// view shows every box of the tree a ray crosses.
-    fn trace_visiting(&self, ray: &Ray, visit: &mut dyn FnMut(IAabb) -> bool) -> Traced {
-        let memory = &mut WalkMemory::new();
-        self.walk(ray, self.bounds, 0.0, f32::INFINITY, visit, memory)
-    }
-
-    fn trace_within(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        self.trace_within_with(ray, t_max, &mut WalkMemory::new())
-    }
-
-    fn trace_within_with<'s>(
-        &'s self,
-        ray: &Ray,
-        t_max: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> Option<Hit> {
-        let hit = self.walk(ray, self.occupied, 0.0, t_max, keep_walking, memory);
-        hit.hit.filter(|h| h.t <= t_max)
     }
 
     fn storage_bytes(&self) -> usize {

@@ -6,7 +6,7 @@
 
 use glam::{BVec3A, IVec3, Vec3A};
 
-use crate::geom::{Face, IAabb, Ray};
+use crate::geom::{IAabb, Ray};
 use crate::math::floor_cell;
 use crate::storage::walk::guess::Guess;
 use crate::storage::walk::{Key, Missed, Walk};
@@ -279,11 +279,9 @@ impl Start {
     /// exact integers), else by saturating integer truncation.
     #[inline]
     pub(crate) fn of(ray: &Ray) -> Start {
-        let (origin, dir, inv_dir) = ray.lanes();
-        let finite_inv = inv_dir.abs().cmplt(Vec3A::INFINITY);
-        let moving = dir.cmpne(Vec3A::ZERO) & finite_inv;
-        let up = moving & dir.cmpgt(Vec3A::ZERO);
-        let down = moving & dir.cmplt(Vec3A::ZERO);
+        let (origin, _, _) = ray.lanes();
+        let (up, down) = directions(ray);
+        let moving = up | down;
         if origin.abs().cmplt(Vec3A::splat(EXACT)).all() {
             // The start cell's entry plane is floor(o) moving up, ceil(o)
             // moving down: the origin lies on it exactly when it is an
@@ -367,24 +365,26 @@ impl Start {
         }
     }
 
-    /// The face a hit in the start cell reports (its distance is 0): the
-    /// one [`Start::key`] enters by, `None` for an origin strictly inside.
-    #[inline]
-    pub(crate) fn face(&self) -> Option<Face> {
-        let key = self.key();
-        (key.t == 0.0).then(|| {
-            let axis = usize::from(key.axis);
-            Face::entered(axis, self.up.test(axis))
-        })
-    }
-
-    /// The part of the direction the start rule reads (which axes it moves
+    /// The part of a direction the start rule reads (which axes it moves
     /// up along, which down), as six bits: rays from one origin with equal
-    /// classes start in the same cell with the same face.
+    /// classes start in the same cell. Without the rest of the start.
     #[inline]
-    pub(crate) fn class(&self) -> u32 {
-        self.up.bitmask() | self.down.bitmask() << 3
+    pub(crate) fn class_of(ray: &Ray) -> u32 {
+        let (up, down) = directions(ray);
+        up.bitmask() | down.bitmask() << 3
     }
+}
+
+/// The axes `ray` moves up along, and down: an axis whose direction has an
+/// infinite reciprocal (a subnormal component) counts as not moving.
+#[inline]
+fn directions(ray: &Ray) -> (BVec3A, BVec3A) {
+    let (_, dir, inv_dir) = ray.lanes();
+    let moving = dir.cmpne(Vec3A::ZERO) & inv_dir.abs().cmplt(Vec3A::INFINITY);
+    (
+        moving & dir.cmpgt(Vec3A::ZERO),
+        moving & dir.cmplt(Vec3A::ZERO),
+    )
 }
 
 /// 1 on the lanes of `mask`, else 0, as integers.
