@@ -16,9 +16,14 @@ use crate::output::{self, Format};
 use crate::progress::{Progress, Spinner};
 use crate::subject::Subject;
 
-/// One frame to render: its number (from 1), the settings it was made
-/// from and the camera.
-pub type Frame = (u32, CameraSettings, Camera);
+/// One frame to render: its camera, and the settings it was made from
+/// (for the flags `--stats` prints and the voxel it starts in).
+pub struct Frame {
+    /// The settings, as `--frames` turned them.
+    pub settings: CameraSettings,
+    /// The camera they make, checked.
+    pub camera: Camera,
+}
 
 /// What every frame of one run shares.
 pub struct Job<'a> {
@@ -140,8 +145,8 @@ impl Job<'_> {
         let threaded = self.threads != Some(1);
         let region = self.region;
         let bounds = self.subject.bounds();
-        let inside = cameras.iter().any(|(_, s, _)| {
-            let cell = s.lookfrom.floor().as_ivec3();
+        let inside = cameras.iter().any(|frame| {
+            let cell = frame.settings.lookfrom.floor().as_ivec3();
             bounds.contains(cell) && self.subject.material(cell) != 0
         });
         if inside {
@@ -163,7 +168,8 @@ impl Job<'_> {
                 encode: Duration::ZERO,
                 storage_bytes: built.scene().storage_bytes(),
             };
-            for ((_, _, camera), path) in cameras.iter().zip(paths) {
+            for (frame, path) in cameras.iter().zip(paths) {
+                let camera = &frame.camera;
                 let rendered =
                     built.render_with(materials, camera, region, self.options, threaded, &|rows| {
                         progress.advance(rows);

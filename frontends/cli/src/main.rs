@@ -34,6 +34,8 @@ use output::Format;
 use subject::{terrain_seed, Subject};
 use view::camera_settings;
 
+/// Parses the flags, then stitches, exports the terrain or renders; any
+/// error is one line on stderr and exit code 2.
 fn main() -> ExitCode {
     let argv: Vec<String> = std::env::args_os()
         .map(|a| a.to_string_lossy().into_owned())
@@ -53,7 +55,11 @@ fn main() -> ExitCode {
     }
     // Before any output exists: an interrupted run then removes its
     // temporary files and leaves every output file as it was.
-    match remove_on_signal().and_then(|()| run(&args, &matches)) {
+    let done = remove_on_signal().and_then(|()| match &args.export_vox {
+        Some(path) => export(path, args.seed, args.size, args.stats),
+        None => run(&args, &matches),
+    });
+    match done {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => exit_with_error(&message),
     }
@@ -62,11 +68,9 @@ fn main() -> ExitCode {
 /// The render, stage by stage: the subject, every frame's camera, the
 /// effects, the crop and the output are resolved and checked before
 /// anything is built; then the render, then what the user should know.
-/// Only this file reads [`Args`]: every stage takes plain values.
+/// Apart from `args` itself, only this file reads [`Args`]: every stage
+/// takes plain values.
 fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
-    if let Some(path) = &args.export_vox {
-        return export(path, args.seed, args.size, args.stats);
-    }
     let random_terrain = args.vox.is_none() && args.seed.is_none();
     farm::check_flags(&args.farm, random_terrain, args.frames)?;
     let subject = Subject::load(args.vox.as_deref(), args.seed, args.size)?;
@@ -74,7 +78,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     let settings = camera_settings(file, &flags, &subject.stage(), subject.cameras())?;
     let range = frame_range(args.frames, args.frame_range, &args.farm)?;
     let cameras = turntable_cameras(settings, range, args.frames.unwrap_or(1))?;
-    let first = &cameras[0].2;
+    let first = &cameras[0].camera;
     let (options, plan) = resolve_effects(&args.effects(), &subject);
     let scene = subject.tile_scene();
     let tile = farm::select(&args.farm, first, &options, scene, args.backend, &args.out)?;
@@ -97,7 +101,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     job.check_memory(args.max_memory)?;
     let totals = job.render_all(&cameras, out, &paths, &mut notes)?;
     if args.stats {
-        job.print_stats(&totals, &plan, &cameras[0].1, args.up.is_some());
+        job.print_stats(&totals, &plan, &cameras[0].settings, args.up.is_some());
     }
     report(&subject, &notes);
     Ok(())
@@ -135,8 +139,9 @@ fn turntable_cameras(
     range
         .frames()
         .map(|k| {
-            let s = turntable(settings, k, frames);
-            Camera::new(s).map(|c| (k, s, c)).map_err(|e| e.to_string())
+            let settings = turntable(settings, k, frames);
+            let camera = Camera::new(settings).map_err(|e| e.to_string())?;
+            Ok(Frame { settings, camera })
         })
         .collect()
 }
