@@ -1,6 +1,7 @@
 //! Command-line arguments (the CLI contract in ARCHITECTURE.md and the
 //! README): every clap type and value parser of the binary lives here and
-//! in its two children, and this module imports no sibling.
+//! in its children, with the plain values the resolvers take (`plain`),
+//! and this module imports no sibling.
 
 use std::path::PathBuf;
 
@@ -10,9 +11,11 @@ use voxtrace::Rect;
 use voxtrace_cli::{parse_frame_range, Backend, FrameRange};
 
 mod farm;
+mod plain;
 mod values;
 
 pub use farm::{StitchArgs, TileArgs};
+pub use plain::GivenFlags;
 pub use values::{
     parse_background, parse_bytes, parse_distance, parse_orbit, parse_rect, parse_sun, parse_vec3,
     BackgroundArg, FormatArg, OrbitArg, ProjectionArg, Sun, ViewArg,

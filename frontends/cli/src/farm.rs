@@ -10,19 +10,19 @@ use voxtrace_cli::atomic::{remove_on_signal, same_file};
 use voxtrace_cli::part::{fnv1a64, settings_text, write_part, Placement};
 use voxtrace_cli::stitch::{list, stitch};
 use voxtrace_cli::tiles::{frames_for_task, tile_name};
-use voxtrace_cli::{say, FrameRange};
+use voxtrace_cli::{say, Backend, FrameRange};
 
-use crate::args::{Args, StitchArgs};
+use crate::args::{StitchArgs, TileArgs};
 use crate::{memory, output};
 
-/// The frames `--tasks T --task-index I` pick out of an animation of
-/// `frames` (`None` without those flags).
+/// The frames `--tasks T --task-index I` (in `farm`) pick out of an
+/// animation of `frames` (`None` without those flags).
 ///
 /// # Errors
 /// One line: the flags without `--frames`, more tasks than frames, or an
 /// index out of range or unset (naming the range).
-pub fn task_frames(args: &Args, frames: Option<u32>) -> Result<Option<FrameRange>, String> {
-    let (Some(tasks), Some(index)) = (args.farm.tasks, &args.farm.task_index) else {
+pub fn task_frames(farm: &TileArgs, frames: Option<u32>) -> Result<Option<FrameRange>, String> {
+    let (Some(tasks), Some(index)) = (farm.tasks, &farm.task_index) else {
         return Ok(None);
     };
     let frames = frames.ok_or("--tasks splits an animation: it needs --frames N")?;
@@ -49,38 +49,69 @@ pub struct TileJob {
 }
 
 /// Checks the farm flags before anything else runs (a random seed is
-/// drawn and printed): `--tiles` and `--tile-index` go together, and tiles
-/// of the terrain need `--seed`, since every task would draw its own.
+/// drawn and printed): `--tiles` and `--tile-index` go together, tiles of
+/// a `random_terrain` (no `--vox`, no `--seed`) are refused, since every
+/// task would draw its own, and a tile is one of a still, not of `frames`.
 ///
 /// # Errors
 /// One line naming the fix.
-pub fn check_flags(args: &Args) -> Result<(), String> {
-    match (args.farm.tiles, &args.farm.tile_index) {
-        (None, Some(_)) => Err("--tile-index needs --tiles CxR".to_string()),
-        (Some(grid), None) => Err(format!(
-            "--tiles {grid} needs --tile-index I (0 to {}) or env:VAR",
-            grid.count() - 1
-        )),
-        (Some(grid), Some(_)) if args.vox.is_none() && args.seed.is_none() => Err(format!(
-            "--tiles {grid} needs --seed N: every task would draw its own random terrain"
-        )),
-        _ => Ok(()),
+pub fn check_flags(
+    farm: &TileArgs,
+    random_terrain: bool,
+    frames: Option<u32>,
+) -> Result<(), String> {
+    match (farm.tiles, &farm.tile_index) {
+        (None, Some(_)) => return Err("--tile-index needs --tiles CxR".to_string()),
+        (Some(grid), None) => {
+            return Err(format!(
+                "--tiles {grid} needs --tile-index I (0 to {}) or env:VAR",
+                grid.count() - 1
+            ))
+        }
+        (Some(grid), Some(_)) if random_terrain => {
+            return Err(format!(
+                "--tiles {grid} needs --seed N: every task would draw its own random terrain"
+            ))
+        }
+        _ => {}
     }
+    if farm.tiles.is_some() && frames.is_some() {
+        return Err("--tiles renders one tile of a still: it does not take --frames".into());
+    }
+    Ok(())
 }
 
-/// The tile `args` ask for, if any.
+/// What a tile's settings hash names of the scene.
+pub enum TileScene<'a> {
+    /// A `.vox` file, hashed whole (read only when a tile is rendered).
+    Vox(&'a Path),
+    /// The terrain of `--seed` and `--size`.
+    Terrain {
+        /// The terrain's seed.
+        seed: u64,
+        /// Its extent N: the volume is `[-N, N)^3`.
+        size: i32,
+    },
+}
+
+/// The tile `farm` asks for, if any, of `camera`'s frame of `scene` in
+/// `backend` with `options`, written to `out` (`%t`: the tile number).
+/// Called after [`check_flags`]; the output checks that the part's format
+/// is PNG.
 ///
 /// # Errors
-/// One line: what [`check_flags`] refuses, an index out of range or an
-/// unset variable (naming the range), a grid finer than the frame, a
-/// `--vox` file that cannot be read, or an `--out` that is not PNG.
+/// One line: an index out of range or an unset variable (naming the
+/// range), a grid finer than the frame, or a `--vox` file that cannot be
+/// read.
 pub fn select(
-    args: &Args,
+    farm: &TileArgs,
     camera: &Camera,
     options: &RenderOptions,
+    scene: TileScene<'_>,
+    backend: Backend,
+    out: &Path,
 ) -> Result<Option<TileJob>, String> {
-    check_flags(args)?;
-    let (Some(grid), Some(index)) = (args.farm.tiles, &args.farm.tile_index) else {
+    let (Some(grid), Some(index)) = (farm.tiles, &farm.tile_index) else {
         return Ok(None);
     };
     let (width, height) = (camera.width(), camera.height());
@@ -93,26 +124,19 @@ pub fn select(
         .tile(width, height, tile)
         .ok_or("the tile index is out of range")?; // resolve checked it
 
-    let subject = match (&args.vox, args.seed) {
-        (Some(path), _) => {
+    let subject = match scene {
+        TileScene::Vox(path) => {
             let bytes = std::fs::read(path)
                 .map_err(|e| format!("cannot load --vox {}: {e}", path.display()))?;
             format!("vox fnv1a64={:016x}", fnv1a64(&bytes))
         }
-        (None, Some(seed)) => format!("terrain seed={seed} size={}", args.size),
-        (None, None) => return Err(format!("--tiles {grid} needs --seed N")),
+        TileScene::Terrain { seed, size } => format!("terrain seed={seed} size={size}"),
     };
-    let settings = settings_text(&subject, args.backend.name(), camera, options);
+    let settings = settings_text(&subject, backend.name(), camera, options);
     // A path that is not UTF-8 has no `%t` this build could replace.
-    let out = args.out.to_str().map_or(args.out.clone(), |pattern| {
+    let out = out.to_str().map_or(out.to_path_buf(), |pattern| {
         PathBuf::from(tile_name(pattern, tile, grid.count()))
     });
-    if output::format_of(&out, args.format)? != output::Format::Png {
-        return Err(format!(
-            "--tiles writes PNG parts (their place in the frame is a PNG text chunk), not --out {}",
-            out.display()
-        ));
-    }
     let placement = Placement {
         frame_width: width,
         frame_height: height,

@@ -7,35 +7,35 @@
 mod args;
 mod effects;
 mod farm;
+mod job;
 mod memory;
 mod output;
 mod progress;
+mod subject;
 mod view;
 mod vox_camera;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::{Duration, Instant};
 
 use clap::{ArgMatches, CommandFactory, FromArgMatches};
-use voxtrace::glam::Vec3;
-use voxtrace::{
-    Background, Camera, CameraSettings, EffectPlan, IAabb, Look, RayStats, Rect, RenderOptions,
-    VoxModel, VoxelGenerator, VoxelSource,
-};
-use voxtrace_cli::atomic::{exit_with_error, remove_on_signal, AtomicFile};
+use voxtrace::{Camera, CameraSettings, EffectPlan, Look, Rect, RenderOptions, VoxelGenerator};
+use voxtrace_cli::atomic::{exit_with_error, remove_on_signal};
 use voxtrace_cli::errors::{self, escape_controls};
 use voxtrace_cli::say;
-use voxtrace_cli::{
-    export_vox, frame_path, on_threads, terrain_box, turntable, BuiltScene, FrameRange,
-};
-use voxtrace_flags::{describe, Boxes, Stage};
+use voxtrace_cli::{export_vox, frame_path, terrain_box, turntable, FrameRange};
+use voxtrace_flags::Effects;
 
-use args::{Args, Command};
-use effects::{ignored_effects, ignored_flags, materials_of, render_options, unused_in_path};
-use progress::{Progress, Spinner};
+use args::{Args, Command, GivenFlags, TileArgs};
+use effects::{ignored_effects, ignored_flags, materials_of, unused_in_path};
+use farm::TileJob;
+use job::{Frame, Job};
+use output::Format;
+use subject::{terrain_seed, Subject};
 use view::camera_settings;
 
+/// Parses the flags, then stitches, exports the terrain or renders; any
+/// error is one line on stderr and exit code 2.
 fn main() -> ExitCode {
     let argv: Vec<String> = std::env::args_os()
         .map(|a| a.to_string_lossy().into_owned())
@@ -55,371 +55,222 @@ fn main() -> ExitCode {
     }
     // Before any output exists: an interrupted run then removes its
     // temporary files and leaves every output file as it was.
-    match remove_on_signal().and_then(|()| run(&args, &matches)) {
+    let done = remove_on_signal().and_then(|()| match &args.export_vox {
+        Some(path) => export(path, args.seed, args.size, args.stats),
+        None => run(&args, &matches),
+    });
+    match done {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => exit_with_error(&message),
     }
 }
 
-/// A seed from the clock and process id: different per run, printed so the
-/// render can be reproduced.
-fn random_seed() -> u64 {
-    let nanos = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.as_nanos() as u64);
-    let mut mix = voxtrace::SplitMix64::new(nanos ^ u64::from(std::process::id()) << 32);
-    mix.next_u64() >> 1 // keep it readable as a positive i64 too
-}
-
-/// What the CLI renders.
-enum Subject {
-    /// The seeded terrain; a `random` seed is printed.
-    Terrain { seed: u64, random: bool },
-    /// A loaded `.vox` scene (boxed: its palette alone is 768 bytes).
-    Model(Box<VoxModel>),
-}
-
-impl Subject {
-    /// The material at `pos`, to tell a camera inside a voxel.
-    fn material(&self, pos: voxtrace::glam::IVec3) -> u8 {
-        match self {
-            Subject::Terrain { seed, .. } => VoxelGenerator::new(*seed).material(pos),
-            Subject::Model(model) => model.material(pos),
-        }
-    }
-}
-
-/// The terrain's seed, and whether it was drawn at random (and so must be
-/// printed, once the run is known to go ahead).
-fn terrain_seed(args: &Args) -> (u64, bool) {
-    match args.seed {
-        Some(seed) => (seed, false),
-        None => (random_seed(), true),
-    }
-}
-
+/// The render, stage by stage: the subject, every frame's camera, the
+/// effects, the crop and the output are resolved and checked before
+/// anything is built; then the render, then what the user should know.
+/// Apart from `args` itself, only this file reads [`Args`]: every stage
+/// takes plain values.
 fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
-    if let Some(path) = &args.export_vox {
-        return export(args, path);
-    }
-    farm::check_flags(args)?;
-    if args.farm.tiles.is_some() && args.frames.is_some() {
-        return Err("--tiles renders one tile of a still: it does not take --frames".into());
-    }
-    let subject = match &args.vox {
-        Some(path) => Subject::Model(Box::new(
-            VoxModel::load(path)
-                .map_err(|e| format!("cannot load --vox {}: {e}", path.display()))?,
-        )),
-        None => {
-            let (seed, random) = terrain_seed(args);
-            Subject::Terrain { seed, random }
-        }
-    };
-    let (bounds, stage, cameras) = match &subject {
-        Subject::Terrain { .. } => (
-            IAabb::centered(args.size),
-            Stage {
-                boxes: Boxes::Bounds(IAabb::centered(args.size)),
-                target: Vec3::ZERO,
-                default_position: Some(CameraSettings::paper(args.size).lookfrom),
-            },
-            None,
-        ),
-        Subject::Model(model) => (
-            model.bounds(),
-            Stage {
-                boxes: Boxes::Model(model),
-                target: (model.bounds().min + model.bounds().max).as_vec3() * 0.5,
-                default_position: None,
-            },
-            args.vox.as_deref().map(|path| (path, model.as_ref())),
-        ),
-    };
-    let settings = camera_settings(args, &stage, cameras)?;
-    let frames = args.frames.unwrap_or(1);
-    let range = match farm::task_frames(args, args.frames)? {
-        Some(range) => range,
-        None => args.frame_range.unwrap_or(FrameRange::all(frames)),
-    };
-    range.check_within(frames)?;
-    // Every frame's camera, checked before anything is built.
-    let cameras = range
-        .frames()
-        .map(|k| {
-            let s = turntable(settings, k, frames);
-            Camera::new(s).map(|c| (k, s, c)).map_err(|e| e.to_string())
-        })
-        .collect::<Result<Vec<_>, String>>()?;
-    let first = &cameras[0].2;
-    let model = match &subject {
-        Subject::Model(model) => Some(model.as_ref()),
-        Subject::Terrain { .. } => None,
-    };
-    let options = render_options(args, bounds, model);
-    let plan = EffectPlan::new(&options, model.map(materials_of));
-    let tile = farm::select(args, first, &options)?;
-    let region = match &tile {
-        Some(tile) => tile.placement.rect,
-        None => args.region.unwrap_or(Rect::full(first)),
-    };
-    region.validate(first).map_err(|_| {
-        format!(
-            "--region {},{},{},{} does not fit in the {}x{} frame",
-            region.x, region.y, region.width, region.height, args.width, args.height
-        )
-    })?;
-
+    let random_terrain = args.vox.is_none() && args.seed.is_none();
+    farm::check_flags(&args.farm, random_terrain, args.frames)?;
+    let subject = Subject::load(args.vox.as_deref(), args.seed, args.size)?;
+    let (file, flags) = (args.camera, args.camera_flags());
+    let settings = camera_settings(file, &flags, &subject.stage(), subject.cameras())?;
+    let range = frame_range(args.frames, args.frame_range, &args.farm)?;
+    let cameras = turntable_cameras(settings, range, args.frames.unwrap_or(1))?;
+    let first = &cameras[0].camera;
+    let (options, plan) = resolve_effects(&args.effects(), &subject);
+    let scene = subject.tile_scene();
+    let tile = farm::select(&args.farm, first, &options, scene, args.backend, &args.out)?;
+    let region = region(tile.as_ref(), args.region, first)?;
     let out = tile.as_ref().map_or(&args.out, |tile| &tile.out);
     let format = output::format_of(out, args.format)?;
-    let mut notes = ignored_effects(&options);
-    if plan.look == Look::Path {
-        notes.extend(unused_in_path(&options));
-    }
-    // The file's MATL values that could not be used as they are.
-    let warnings: Vec<String> = match (model, &args.vox) {
-        (Some(model), Some(path)) => model
-            .warnings()
-            .iter()
-            .map(|w| format!("{}: {w}", path.display()))
-            .collect(),
-        _ => Vec::new(),
+    let files = args.frames.map(|_| range);
+    let paths = output_paths(out, format, tile.is_some(), &args.out, files)?;
+    let mut notes = notes(&options, &plan, &args.given(matches), &settings, format);
+    let (backend, threads, tile) = (args.backend, args.threads, tile.as_ref());
+    let job = Job {
+        backend,
+        threads,
+        subject: &subject,
+        options: &options,
+        region,
+        format,
+        tile,
     };
-    notes.extend(ignored_flags(args, matches, &settings, format));
+    job.check_memory(args.max_memory)?;
+    let totals = job.render_all(&cameras, out, &paths, &mut notes)?;
+    if args.stats {
+        job.print_stats(&totals, &plan, &cameras[0].settings, args.up.is_some());
+    }
+    report(&subject, &notes);
+    Ok(())
+}
 
-    // Check the output first: a bad path fails now, not after the render.
+/// The frames to render: the run of `--tasks` (`farm`), else
+/// `--frame-range`, else all of `frames` (one for a still), checked
+/// against the animation.
+///
+/// # Errors
+/// One line: a bad task split, or a range past the last frame.
+fn frame_range(
+    frames: Option<u32>,
+    asked: Option<FrameRange>,
+    farm: &TileArgs,
+) -> Result<FrameRange, String> {
+    let range = match farm::task_frames(farm, frames)? {
+        Some(range) => range,
+        None => asked.unwrap_or(FrameRange::all(frames.unwrap_or(1))),
+    };
+    range.check_within(frames.unwrap_or(1))?;
+    Ok(range)
+}
+
+/// Every frame's camera in `range` of a turntable of `frames` around
+/// `settings`, checked before anything is built.
+///
+/// # Errors
+/// The first camera the core refuses, in one line.
+fn turntable_cameras(
+    settings: CameraSettings,
+    range: FrameRange,
+    frames: u32,
+) -> Result<Vec<Frame>, String> {
+    range
+        .frames()
+        .map(|k| {
+            let settings = turntable(settings, k, frames);
+            let camera = Camera::new(settings).map_err(|e| e.to_string())?;
+            Ok(Frame { settings, camera })
+        })
+        .collect()
+}
+
+/// The crop of `camera`'s frame to render: the `tile`'s, else `--region`,
+/// else the whole frame.
+///
+/// # Errors
+/// One line when the crop does not fit in the frame.
+fn region(tile: Option<&TileJob>, asked: Option<Rect>, camera: &Camera) -> Result<Rect, String> {
+    let region = match tile {
+        Some(tile) => tile.placement.rect,
+        None => asked.unwrap_or(Rect::full(camera)),
+    };
+    region.validate(camera).map_err(|_| {
+        format!(
+            "--region {},{},{},{} does not fit in the {}x{} frame",
+            region.x,
+            region.y,
+            region.width,
+            region.height,
+            camera.width(),
+            camera.height()
+        )
+    })?;
+    Ok(region)
+}
+
+/// The options the `effects` ask for on `subject` (a `.vox` file's light
+/// folded in, as every frontend reads them), and the plan of what runs.
+fn resolve_effects(effects: &Effects, subject: &Subject<'_>) -> (RenderOptions, EffectPlan) {
+    let model = subject.model();
+    let options = voxtrace_flags::render_options(effects, subject.bounds(), model);
+    let plan = EffectPlan::new(&options, model.map(materials_of));
+    (options, plan)
+}
+
+/// A note for each effect asked for in `options` that the `plan` does not
+/// run, then for each flag `given` that changes nothing for the camera
+/// `settings` and the output `format`.
+fn notes(
+    options: &RenderOptions,
+    plan: &EffectPlan,
+    given: &GivenFlags,
+    settings: &CameraSettings,
+    format: Format,
+) -> Vec<String> {
+    let mut notes = ignored_effects(options);
+    if plan.look == Look::Path {
+        notes.extend(unused_in_path(options));
+    }
+    notes.extend(ignored_flags(given, settings, format));
+    notes
+}
+
+/// Checks the output `out` in `format` before the render, so that a bad
+/// one fails now, not after it: a `tiled` run's part is PNG, standard
+/// output (`-`) takes one still that is not a tile, and is not a
+/// terminal. Returns the path of every frame: `out`, or the `pattern`'s
+/// for each of the `frames` of an animation (one file each).
+///
+/// # Errors
+/// One line naming the problem.
+fn output_paths(
+    out: &Path,
+    format: Format,
+    tiled: bool,
+    pattern: &Path,
+    frames: Option<FrameRange>,
+) -> Result<Vec<PathBuf>, String> {
+    if tiled && format != Format::Png {
+        return Err(format!(
+            "--tiles writes PNG parts (their place in the frame is a PNG text chunk), not --out {}",
+            out.display()
+        ));
+    }
     let to_stdout = output::is_stdout(out);
-    if to_stdout && tile.is_some() {
+    if to_stdout && tiled {
         return Err(
             "--tiles writes a part file for `voxtrace stitch`: --out - cannot be one".into(),
         );
     }
-    if to_stdout && args.frames.is_some() {
+    if to_stdout && frames.is_some() {
         return Err("--frames writes one file per frame: --out - cannot hold them".into());
     }
     if to_stdout {
         output::check_stdout()?;
     }
-    let paths: Vec<PathBuf> = if args.frames.is_some() {
-        range
-            .frames()
-            .map(|k| frame_path(&args.out, k))
-            .collect::<Result<_, _>>()?
-    } else {
-        vec![out.clone()]
-    };
-    // Refuse what cannot fit before building it, naming the bytes.
-    let loaded = match &subject {
-        Subject::Model(model) => Some((model.voxel_count() as u64, model.heap_bytes() as u128)),
-        Subject::Terrain { .. } => None,
-    };
-    let pixels = u64::from(region.width) * u64::from(region.height);
-    let encoder = match &tile {
-        // A part is a PNG with its placement, streamed by the same encoder.
-        Some(_) => output::encoder_bytes(output::Format::Png, region.width, region.height, true),
-        None => {
-            let alpha = options.background == Background::Transparent;
-            output::encoder_bytes(format, region.width, region.height, alpha)
-        }
-    };
-    let frame = (pixels, encoder);
-    memory::budget(args.backend, bounds, loaded, frame, args.max_memory).check(args.backend)?;
-    // The first file is a temporary one beside its path from now on, which
-    // replaces the path only once complete; on any error it is removed.
-    let first_file = if to_stdout {
-        None
-    } else {
-        Some(output::create(&paths[0])?)
-    };
-    let job = Job {
-        args,
-        subject: &subject,
-        bounds,
-        options: &options,
-        plan: &plan,
-        region,
-        format,
-        tile: tile.as_ref(),
-    };
-    job.render_all(&cameras, &paths, first_file, &mut notes)?;
-    // The seed, warnings and notes only after a success: an error stays
-    // the one line on stderr. Escaped: a path a warning quotes cannot
-    // start a line of its own.
-    if let Subject::Terrain { seed, random: true } = subject {
+    match frames {
+        Some(range) => range.frames().map(|k| frame_path(pattern, k)).collect(),
+        None => Ok(vec![out.to_path_buf()]),
+    }
+}
+
+/// Prints the random seed, the file's warnings and the `notes`, only after
+/// a success: an error stays the one line on stderr. Escaped: a path a
+/// warning quotes cannot start a line of its own.
+fn report(subject: &Subject<'_>, notes: &[String]) {
+    if let Subject::Terrain {
+        seed, random: true, ..
+    } = subject
+    {
         say!("seed: {seed}");
     }
-    warnings
+    subject
+        .warnings()
         .iter()
         .for_each(|w| say!("warning: {}", escape_controls(w)));
     notes
         .iter()
         .for_each(|note| say!("note: {}", escape_controls(note)));
-    Ok(())
 }
 
-/// `--export-vox`: the terrain as a `.vox` file.
-fn export(args: &Args, path: &Path) -> Result<(), String> {
-    let (seed, random) = terrain_seed(args);
+/// `--export-vox`: the terrain of `seed` (random without one) and `size`
+/// as a `.vox` file at `path`, with `--stats`' counts when `stats`.
+fn export(path: &Path, seed: Option<u64>, size: i32, stats: bool) -> Result<(), String> {
+    let (seed, random) = terrain_seed(seed);
     let mut bytes = Vec::new();
     let terrain = VoxelGenerator::new(seed);
-    let count = export_vox(&terrain, terrain_box(&terrain, args.size), &mut bytes)?;
+    let count = export_vox(&terrain, terrain_box(&terrain, size), &mut bytes)?;
     std::fs::write(path, &bytes)
         .map_err(|e| format!("cannot write --export-vox {}: {e}", path.display()))?;
     // Only now: an error stays the one line on stderr.
     if random {
         say!("seed: {seed}");
     }
-    if args.stats {
+    if stats {
         say!("voxels: {count}");
         say!("file_bytes: {}", bytes.len());
     }
     Ok(())
-}
-
-/// What every frame of one run shares.
-struct Job<'a> {
-    args: &'a Args,
-    subject: &'a Subject,
-    bounds: IAabb,
-    options: &'a RenderOptions,
-    /// The effects the frames simulate, for `--stats`.
-    plan: &'a EffectPlan,
-    region: Rect,
-    format: output::Format,
-    /// The render-farm tile this run renders, written as a part.
-    tile: Option<&'a farm::TileJob>,
-}
-
-impl Job<'_> {
-    /// Writes one frame's pixels into `first` (the first path's file,
-    /// created up front) or else `path` (standard output for `-`), in the
-    /// run's format, as a part with `--tiles`; a file replaces its path
-    /// only once written whole.
-    fn write(
-        &self,
-        first: Option<AtomicFile>,
-        path: &Path,
-        pixels: Vec<u32>,
-    ) -> Result<(), String> {
-        let region = self.region;
-        let alpha = self.options.background == Background::Transparent;
-        let failed = |e: String| format!("cannot write --out {}: {e}", path.display());
-        if first.is_none() && output::is_stdout(path) {
-            let out = output::stdout().map_err(|e| failed(e.to_string()))?;
-            return output::write(out, self.format, region.width, region.height, pixels, alpha)
-                .map_err(failed);
-        }
-        let mut file = match first {
-            Some(file) => file,
-            None => output::create(path)?,
-        };
-        match self.tile {
-            Some(tile) => farm::write_tile(&mut file, tile, &pixels),
-            None => output::write(
-                &mut file,
-                self.format,
-                region.width,
-                region.height,
-                pixels,
-                alpha,
-            ),
-        }
-        .and_then(|()| file.commit().map_err(|e| e.to_string()))
-        .map_err(failed)
-    }
-
-    /// Builds the scene once and renders every frame's camera into its
-    /// path (`first` is the first path, already created; `None` for
-    /// standard output), then prints `--stats`.
-    fn render_all(
-        &self,
-        cameras: &[(u32, CameraSettings, Camera)],
-        paths: &[PathBuf],
-        first: Option<AtomicFile>,
-        notes: &mut Vec<String>,
-    ) -> Result<(), String> {
-        let args = self.args;
-        let threaded = args.threads != Some(1);
-        let region = self.region;
-        let inside = cameras.iter().any(|(_, s, _)| {
-            let cell = s.lookfrom.floor().as_ivec3();
-            self.bounds.contains(cell) && self.subject.material(cell) != 0
-        });
-        if inside {
-            notes.push(
-                "the camera starts inside a solid voxel: its rays see only that voxel (move it with --position)"
-                    .to_string(),
-            );
-        }
-        let mut first = first;
-        let (built, build, totals) = on_threads(args.threads, || {
-            let spinner = Spinner::start(format!("building the {} scene", args.backend.name()));
-            let (built, build, materials) = match self.subject {
-                Subject::Terrain { seed, .. } => {
-                    let terrain = VoxelGenerator::new(*seed);
-                    let (built, build) =
-                        BuiltScene::build_from(args.backend, &terrain, self.bounds, threaded)?;
-                    (built, build, None)
-                }
-                Subject::Model(model) => {
-                    let (built, build) = BuiltScene::build_from(
-                        args.backend,
-                        model.as_ref(),
-                        self.bounds,
-                        threaded,
-                    )?;
-                    (built, build, Some(materials_of(model)))
-                }
-            };
-            drop(spinner);
-            let total_rows = region.height.saturating_mul(cameras.len() as u32);
-            let progress = Progress::rows(total_rows);
-            let mut totals = (RayStats::default(), Duration::ZERO, Duration::ZERO);
-            for ((_, _, camera), path) in cameras.iter().zip(paths) {
-                let rendered =
-                    built.render_with(materials, camera, region, self.options, threaded, &|rows| {
-                        progress.advance(rows);
-                    });
-                let rendered = match rendered {
-                    Ok(r) => r,
-                    Err(e) => {
-                        progress.finish();
-                        return Err(e);
-                    }
-                };
-                let started = Instant::now();
-                if let Err(e) = self.write(first.take(), path, rendered.pixels) {
-                    progress.finish();
-                    return Err(e);
-                }
-                totals.0 += rendered.rays;
-                totals.1 += rendered.elapsed;
-                totals.2 += started.elapsed();
-            }
-            progress.finish();
-            Ok((built, build, totals))
-        })?;
-        if args.stats {
-            let (rays, render, encode) = totals;
-            let ms = |d: Duration| d.as_secs_f64() * 1e3;
-            let mrays = rays.primary_rays as f64 / render.as_secs_f64().max(1e-9) / 1e6;
-            let v = |v: voxtrace::glam::IVec3| format!("{},{},{}", v.x, v.y, v.z);
-            say!("build_ms: {:.3}", ms(build));
-            say!("render_ms: {:.3}", ms(render));
-            say!("encode_ms: {:.3}", ms(encode));
-            say!("primary_rays: {}", rays.primary_rays);
-            say!("shadow_rays: {}", rays.shadow_rays);
-            say!("ao_rays: {}", rays.ao_rays);
-            say!("reflection_rays: {}", rays.reflection_rays);
-            say!("refraction_rays: {}", rays.refraction_rays);
-            say!("light_rays: {}", rays.light_rays);
-            say!("effects: {}", self.plan);
-            say!("storage_bytes: {}", built.scene().storage_bytes());
-            say!("mrays_per_s: {mrays:.3}");
-            say!("scene_min: {}", v(self.bounds.min));
-            say!("scene_max: {}", v(self.bounds.max));
-            say!("camera: {}", describe(&cameras[0].1, args.up.is_some()));
-        }
-        Ok(())
-    }
 }

@@ -5,21 +5,20 @@ use std::path::Path;
 
 use voxtrace::{CameraSettings, Projection, VoxCamera, VoxCameraMode, VoxModel};
 
-use crate::args::Args;
-
 /// The cameras `--camera` may pick from: the `.vox` file's path and the
 /// scene loaded from it; `None` for the terrain.
 pub type FileCameras<'a> = Option<(&'a Path, &'a VoxModel)>;
 
-/// What the file's camera `n` names, or why it cannot be used.
+/// What the file's camera `n` names, for an image of `width` x `height`
+/// pixels, or why it cannot be used.
 ///
 /// # Errors
 /// One line, for the terrain (which has no cameras), a camera id the file
 /// does not have (naming how many it has), a panorama, or an orthographic
 /// camera without a height.
 pub fn file_camera(
-    args: &Args,
     n: u32,
+    (width, height): (u32, u32),
     cameras: FileCameras<'_>,
 ) -> Result<CameraSettings, String> {
     let Some((path, model)) = cameras else {
@@ -62,8 +61,8 @@ pub fn file_camera(
     };
     let (_, up) = camera.orientation();
     Ok(CameraSettings {
-        width: args.width,
-        height: args.height,
+        width,
+        height,
         vertical_fov: camera.fov,
         lookfrom: camera.position(),
         lookat: camera.lookat(),

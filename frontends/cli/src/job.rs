@@ -1,0 +1,235 @@
+//! The render stage: what every frame of one run shares ([`Job`]), the
+//! memory check before anything is built, the build, every frame rendered
+//! and written, and the `--stats` of it all.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use voxtrace::{Background, Camera, CameraSettings, EffectPlan, RayStats, Rect, RenderOptions};
+use voxtrace_cli::atomic::AtomicFile;
+use voxtrace_cli::{on_threads, say, Backend};
+use voxtrace_flags::describe;
+
+use crate::farm::{self, TileJob};
+use crate::memory;
+use crate::output::{self, Format};
+use crate::progress::{Progress, Spinner};
+use crate::subject::Subject;
+
+/// One frame to render: its camera, and the settings it was made from
+/// (for the flags `--stats` prints and the voxel it starts in).
+pub struct Frame {
+    /// The settings, as `--frames` turned them.
+    pub settings: CameraSettings,
+    /// The camera they make, checked.
+    pub camera: Camera,
+}
+
+/// What every frame of one run shares.
+pub struct Job<'a> {
+    /// The storage to build.
+    pub backend: Backend,
+    /// Worker threads (`Some(1)`: the scalar path on this thread).
+    pub threads: Option<u16>,
+    /// What the frames show.
+    pub subject: &'a Subject<'a>,
+    /// The effects.
+    pub options: &'a RenderOptions,
+    /// The crop of every frame that is rendered.
+    pub region: Rect,
+    /// The files' format (a tile's part is PNG whatever it says).
+    pub format: Format,
+    /// The render-farm tile this run renders, written as a part.
+    pub tile: Option<&'a TileJob>,
+}
+
+/// What a run cost, for `--stats`.
+pub struct Totals {
+    /// Wall time of the build.
+    pub build: Duration,
+    /// Rays traced over every frame, by kind.
+    pub rays: RayStats,
+    /// Wall time of the renders alone.
+    pub render: Duration,
+    /// Wall time of the encoding and writing.
+    pub encode: Duration,
+    /// The built storage's bytes.
+    pub storage_bytes: usize,
+}
+
+impl Job<'_> {
+    /// Refuses a scene and frame that cannot fit in `max_memory` (`None`:
+    /// what the OS says is available) before anything is built, naming
+    /// the bytes.
+    ///
+    /// # Errors
+    /// [`memory::Budget::check`]'s one line.
+    pub fn check_memory(&self, max_memory: Option<u64>) -> Result<(), String> {
+        let region = self.region;
+        let pixels = u64::from(region.width) * u64::from(region.height);
+        let encoder = match self.tile {
+            // A part is a PNG with its placement, streamed by the same encoder.
+            Some(_) => output::encoder_bytes(Format::Png, region.width, region.height, true),
+            None => {
+                let alpha = self.options.background == Background::Transparent;
+                output::encoder_bytes(self.format, region.width, region.height, alpha)
+            }
+        };
+        let bounds = self.subject.bounds();
+        let loaded = self.subject.loaded();
+        memory::budget(self.backend, bounds, loaded, (pixels, encoder), max_memory)
+            .check(self.backend)
+    }
+
+    /// Writes one frame's pixels into `first` (the first path's file,
+    /// created up front) or else `path` (standard output for `-`), in the
+    /// run's format, as a part with `--tiles`; a file replaces its path
+    /// only once written whole.
+    fn write(
+        &self,
+        first: Option<AtomicFile>,
+        path: &Path,
+        pixels: Vec<u32>,
+    ) -> Result<(), String> {
+        let region = self.region;
+        let alpha = self.options.background == Background::Transparent;
+        let failed = |e: String| format!("cannot write --out {}: {e}", path.display());
+        if first.is_none() && output::is_stdout(path) {
+            let out = output::stdout().map_err(|e| failed(e.to_string()))?;
+            return output::write(out, self.format, region.width, region.height, pixels, alpha)
+                .map_err(failed);
+        }
+        let mut file = match first {
+            Some(file) => file,
+            None => output::create(path)?,
+        };
+        match self.tile {
+            Some(tile) => farm::write_tile(&mut file, tile, &pixels),
+            None => output::write(
+                &mut file,
+                self.format,
+                region.width,
+                region.height,
+                pixels,
+                alpha,
+            ),
+        }
+        .and_then(|()| file.commit().map_err(|e| e.to_string()))
+        .map_err(failed)
+    }
+
+    /// Builds the scene once and renders every frame's camera into its
+    /// path, `out` being the first path or `-` (standard output); adds a
+    /// note when a camera starts inside a voxel.
+    ///
+    /// The first path's file is created before the build, so that a bad
+    /// path fails before the work: a temporary file beside it from then
+    /// on, which replaces the path only once complete and is removed on
+    /// any error.
+    ///
+    /// # Errors
+    /// One line: the file cannot be created, the scene built, a frame
+    /// rendered or written.
+    pub fn render_all(
+        &self,
+        cameras: &[Frame],
+        out: &Path,
+        paths: &[PathBuf],
+        notes: &mut Vec<String>,
+    ) -> Result<Totals, String> {
+        let mut first = if output::is_stdout(out) {
+            None
+        } else {
+            Some(output::create(&paths[0])?)
+        };
+        let threaded = self.threads != Some(1);
+        let region = self.region;
+        let bounds = self.subject.bounds();
+        let inside = cameras.iter().any(|frame| {
+            let cell = frame.settings.lookfrom.floor().as_ivec3();
+            bounds.contains(cell) && self.subject.material(cell) != 0
+        });
+        if inside {
+            notes.push(
+                "the camera starts inside a solid voxel: its rays see only that voxel (move it with --position)"
+                    .to_string(),
+            );
+        }
+        on_threads(self.threads, || {
+            let spinner = Spinner::start(format!("building the {} scene", self.backend.name()));
+            let (built, build, materials) = self.subject.build(self.backend, threaded)?;
+            drop(spinner);
+            let total_rows = region.height.saturating_mul(cameras.len() as u32);
+            let progress = Progress::rows(total_rows);
+            let mut totals = Totals {
+                build,
+                rays: RayStats::default(),
+                render: Duration::ZERO,
+                encode: Duration::ZERO,
+                storage_bytes: built.scene().storage_bytes(),
+            };
+            for (frame, path) in cameras.iter().zip(paths) {
+                let camera = &frame.camera;
+                let rendered =
+                    built.render_with(materials, camera, region, self.options, threaded, &|rows| {
+                        progress.advance(rows);
+                    });
+                let rendered = match rendered {
+                    Ok(r) => r,
+                    Err(e) => {
+                        progress.finish();
+                        return Err(e);
+                    }
+                };
+                let started = Instant::now();
+                if let Err(e) = self.write(first.take(), path, rendered.pixels) {
+                    progress.finish();
+                    return Err(e);
+                }
+                totals.rays += rendered.rays;
+                totals.render += rendered.elapsed;
+                totals.encode += started.elapsed();
+            }
+            progress.finish();
+            Ok(totals)
+        })
+    }
+
+    /// Prints `--stats`: what the run cost, the `plan`'s effects, the
+    /// scene's box, and the flags that make the first frame's `camera`
+    /// (`--up` only when `explicit_up`).
+    pub fn print_stats(
+        &self,
+        totals: &Totals,
+        plan: &EffectPlan,
+        camera: &CameraSettings,
+        explicit_up: bool,
+    ) {
+        let Totals {
+            build,
+            rays,
+            render,
+            encode,
+            storage_bytes,
+        } = *totals;
+        let bounds = self.subject.bounds();
+        let ms = |d: Duration| d.as_secs_f64() * 1e3;
+        let mrays = rays.primary_rays as f64 / render.as_secs_f64().max(1e-9) / 1e6;
+        let v = |v: voxtrace::glam::IVec3| format!("{},{},{}", v.x, v.y, v.z);
+        say!("build_ms: {:.3}", ms(build));
+        say!("render_ms: {:.3}", ms(render));
+        say!("encode_ms: {:.3}", ms(encode));
+        say!("primary_rays: {}", rays.primary_rays);
+        say!("shadow_rays: {}", rays.shadow_rays);
+        say!("ao_rays: {}", rays.ao_rays);
+        say!("reflection_rays: {}", rays.reflection_rays);
+        say!("refraction_rays: {}", rays.refraction_rays);
+        say!("light_rays: {}", rays.light_rays);
+        say!("effects: {plan}");
+        say!("storage_bytes: {storage_bytes}");
+        say!("mrays_per_s: {mrays:.3}");
+        say!("scene_min: {}", v(bounds.min));
+        say!("scene_max: {}", v(bounds.max));
+        say!("camera: {}", describe(camera, explicit_up));
+    }
+}
