@@ -16,7 +16,7 @@
 use glam::{BVec3A, IVec3, Vec3A};
 
 use crate::geom::{IAabb, Ray};
-use crate::storage::walk::{EntryCell, Key, Lanes, Walk};
+use crate::storage::walk::{EntryCell, Key, Lanes, Start, Walk};
 
 /// 1.5 * 2^23: added to a float below 2^22 in size, a sum whose last
 /// mantissa bit is worth 1.
@@ -57,13 +57,13 @@ enum Outside {
 
 impl Entry {
     /// The entry into `region` that [`Walk::start`] finds for the walk of
-    /// `ray` (whose lanes are `lanes`), or `None` when the ray misses it.
+    /// `ray`, or `None` when the ray misses it.
     #[inline(always)]
-    pub(super) fn new(ray: &Ray, lanes: &Lanes, region: &IAabb) -> Option<Entry> {
-        if let Some(entry) = Entry::inside(lanes, region) {
+    pub(super) fn new(ray: &Ray, region: &IAabb) -> Option<Entry> {
+        if let Some(entry) = Entry::inside(ray, region) {
             return Some(entry);
         }
-        match Entry::outside(lanes, region) {
+        match Entry::outside(ray, region) {
             Outside::Enters(entry) => return Some(entry),
             Outside::Misses => return None,
             Outside::Unsure => {}
@@ -84,17 +84,17 @@ impl Entry {
     /// search: the start cell is then inside, the walk enters nothing, and
     /// its key is the start key ([`crate::storage::walk::Start::key`]).
     #[inline]
-    fn inside(lanes: &Lanes, region: &IAabb) -> Option<Entry> {
-        let o = lanes.origin;
+    fn inside(ray: &Ray, region: &IAabb) -> Option<Entry> {
+        let (o, _, inv_dir) = ray.lanes();
         let strictly_inside =
             (o.cmpgt(region.min.as_vec3a()) & o.cmplt(region.max.as_vec3a())).all();
         if !strictly_inside {
             return None;
         }
-        let start = &lanes.start;
-        let (moving, down, cell) = (lanes.moving, start.down, start.cell_f);
+        let start = Start::of(ray);
+        let (moving, down, cell) = (start.moving(), start.down, start.cell_f);
         let exit = Vec3A::select(down, cell, cell + 1.0);
-        let next_t = Vec3A::select(moving, (exit - o) * lanes.inv_dir, Vec3A::INFINITY);
+        let next_t = Vec3A::select(moving, (exit - o) * inv_dir, Vec3A::INFINITY);
         Some(Entry {
             cell: start.cell,
             moving,
@@ -113,7 +113,8 @@ impl Entry {
     /// common case of secondary rays (an origin inside) would pay for
     /// returning the entry through memory.
     #[inline(never)]
-    fn outside(lanes: &Lanes, region: &IAabb) -> Outside {
+    fn outside(ray: &Ray, region: &IAabb) -> Outside {
+        let lanes = Lanes::of(ray);
         let (lo, hi) = (region.min.as_vec3a(), region.max.as_vec3a());
         let Some((key, starts_inside)) = lanes.entry_of(lo, hi) else {
             return Outside::Misses;

@@ -185,14 +185,22 @@ impl<B: AsRef<[u8]>> Scene for DenseScene<B> {
         _memory: &mut WalkMemory<'s>,
         visit: Visit<'_>,
     ) -> Traced {
-        let traced = match visit {
-            Some(visit) => self.walk_visiting(ray, visit),
+        match visit {
+            Some(visit) => {
+                let traced = self.walk_visiting(ray, visit);
+                Traced {
+                    hit: traced.hit.filter(|h| h.t <= reach.max),
+                    steps: traced.steps,
+                }
+            }
             None if reach.max == f32::INFINITY => self.walk::<false>(ray, f32::INFINITY),
-            None => self.walk::<true>(ray, reach.max),
-        };
-        Traced {
-            hit: traced.hit.filter(|h| h.t <= reach.max),
-            steps: traced.steps,
+            None => {
+                let traced = self.walk::<true>(ray, reach.max);
+                Traced {
+                    hit: traced.hit.filter(|h| h.t <= reach.max),
+                    steps: traced.steps,
+                }
+            }
         }
     }
 

@@ -125,7 +125,7 @@ fn the_dense_walk_finds_the_single_step_walks_hit() {
 #[test]
 fn the_entry_is_the_single_step_walks_entry() {
     use crate::storage::dense::entry::Entry;
-    use crate::storage::walk::{Lanes, Walk};
+    use crate::storage::walk::Walk;
 
     let mut rng = Rng(0x2545_F491_4F6C_DD1D);
     let (mut entered, mut from_outside) = (0, 0);
@@ -143,7 +143,7 @@ fn the_entry_is_the_single_step_walks_entry() {
         let region = IAabb::new(lo, lo + size);
         let ray = ray(&mut rng, &region);
         let walk = Walk::start(&ray, &region);
-        let entry = Entry::new(&ray, &Lanes::of(&ray), &region);
+        let entry = Entry::new(&ray, &region);
         assert_eq!(
             entry.is_some(),
             walk.is_some(),

@@ -28,7 +28,7 @@ use crate::geom::{Face, IAabb, Ray};
 use crate::scene::{Hit, Traced};
 use crate::storage::dense::entry::{whole_numbers, Entry};
 use crate::storage::dense::DenseScene;
-use crate::storage::walk::{Key, Lanes, Walk};
+use crate::storage::walk::{Key, Walk};
 use crate::voxel::Palette;
 
 const MISS: Traced = Traced {
@@ -70,7 +70,7 @@ impl<B: AsRef<[u8]>> DenseScene<B> {
             down,
             next_t,
             key,
-        }) = Entry::new(ray, &Lanes::of(ray), region)
+        }) = Entry::new(ray, region)
         else {
             return MISS;
         };

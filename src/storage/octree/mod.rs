@@ -15,9 +15,8 @@ use glam::IVec3;
 
 use crate::frustum::Frustum;
 use crate::geom::{IAabb, Ray};
-use crate::scene::{Reach, Scene, SolidStart, Traced, Visit, WalkMemory};
+use crate::scene::{Reach, Scene, Traced, Visit, WalkMemory};
 use crate::storage::octree::node::{brick_local, child_offset, NodeKind, BRICK};
-use crate::storage::walk::Start;
 use crate::voxel::Palette;
 
 pub use crate::storage::octree::node::Node;
@@ -136,15 +135,6 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     }
 }
 
-/// `traced` without a hit farther than `max`.
-#[inline]
-fn within(traced: Traced, max: f32) -> Traced {
-    Traced {
-        hit: traced.hit.filter(|h| h.t <= max),
-        steps: traced.steps,
-    }
-}
-
 /// The visitor of every trace but the debug view's: never stops the walk.
 fn keep_walking(_: IAabb) -> bool {
     true
@@ -162,37 +152,12 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
         memory: &mut WalkMemory<'s>,
         visit: Visit<'_>,
     ) -> Traced {
-        let Reach { clear, max } = reach;
-        if let Some(visit) = visit {
+        match visit {
             // The whole volume (not only the occupied box), so the debug
             // view shows every box of the tree a ray crosses.
-            let traced = self.walk(ray, self.bounds, clear, max, visit, memory);
-            return within(traced, max);
+            Some(visit) => self.walk(ray, self.bounds, reach, visit, memory),
+            None => self.walk(ray, self.occupied, reach, keep_walking, memory),
         }
-        // Rays sharing an origin and a direction class (a camera's) share
-        // their start cell: once a walk has found it solid, the memory
-        // answers the rest without a walk (a camera inside a voxel).
-        let owner = self as *const Self as usize;
-        let from_start = clear == 0.0;
-        if let (true, Some(seen)) = (from_start, memory.solid_start) {
-            if seen.owner == owner && seen.key == SolidStart::key_of(ray, Start::class_of(ray)) {
-                return within(
-                    Traced {
-                        hit: Some(seen.hit),
-                        steps: 0,
-                    },
-                    max,
-                );
-            }
-        }
-        let traced = self.walk(ray, self.occupied, clear, max, keep_walking, memory);
-        if let Some(hit) = traced.hit.filter(|h| from_start && h.t == 0.0) {
-            // (A hit at 0 is in the start cell: every crossing at 0 is a
-            // plane the origin lies on, which the start rule has crossed.)
-            let key = SolidStart::key_of(ray, Start::class_of(ray));
-            memory.solid_start = Some(SolidStart { owner, key, hit });
-        }
-        within(traced, max)
     }
 
     fn clear_distance(&self, frustum: &Frustum) -> f32 {

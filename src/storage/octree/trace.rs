@@ -19,13 +19,13 @@
 use glam::{IVec3, Vec3A};
 
 use crate::geom::{IAabb, Ray};
-use crate::scene::{Hit, Traced, WalkMemory};
+use crate::scene::{Hit, Reach, SolidStart, Traced, WalkMemory};
 use crate::storage::octree::grid::{changed_bits, cube_at, pow2, spread, whole};
 use crate::storage::octree::memory::{Begun, PATH};
 use crate::storage::octree::node::{child_rank, BrickMaterials, Node, NodeKind, BRICK, GROUP};
 use crate::storage::octree::OctreeScene;
-use crate::storage::walk::Key;
 use crate::storage::walk::Lanes;
+use crate::storage::walk::{Key, Start};
 
 /// The cube of side 2^log at the corner `cube` (exact floats) as the box
 /// a visitor is shown.
@@ -56,15 +56,19 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// Starting at the region instead of the volume changes nothing but
     /// speed: outside the occupied box every cell is empty, and the walk
     /// enters the region at the crossing single steps would enter it by.
+    #[inline(never)]
     pub(super) fn walk<V: FnMut(IAabb) -> bool>(
         &self,
         ray: &Ray,
         region: IAabb,
-        t_start: f32,
-        t_max: f32,
+        reach: Reach,
         mut visit: V,
         memory: &mut WalkMemory,
     ) -> Traced {
+        let Reach {
+            clear: t_start,
+            max: t_max,
+        } = reach;
         let missed = Traced {
             hit: None,
             steps: 0,
@@ -74,6 +78,17 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         }
         if t_start == f32::INFINITY {
             return missed;
+        }
+        // Rays sharing an origin and a direction class (a camera's) share
+        // their start cell: once a walk has found it solid, the memory
+        // answers the rest without a walk (a camera inside a voxel).
+        let owner = self as *const Self as usize;
+        let from_start = t_start == 0.0;
+        if let (true, Some(seen)) = (from_start, &memory.solid_start) {
+            if seen.owner == owner && seen.key == SolidStart::key_of(ray, Start::class_of(ray)) {
+                let hit = Some(seen.hit).filter(|h| h.t <= t_max);
+                return Traced { hit, steps: 0 };
+            }
         }
         let lanes = Lanes::of(ray);
         let (region_lo, region_hi) = (region.min.as_vec3a(), region.max.as_vec3a());
@@ -117,6 +132,24 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                 return $traced;
             }};
         }
+        // The walk ends on a hit in the cell at `$at` (position `$pos`):
+        // reported if within reach, and remembered when it is the start
+        // cell. (A hit at 0 is in the start cell: every crossing at 0 is a
+        // plane the origin lies on, which the start rule has crossed.)
+        macro_rules! end_hit {
+            ($at:expr, $pos:expr, $material:expr) => {{
+                let traced = self.hit(&lanes, key, $pos, $material, steps, placed_key);
+                match traced.hit {
+                    Some(hit) if hit.t > t_max => end!($at, Traced { hit: None, steps }),
+                    Some(hit) if from_start && hit.t == 0.0 => {
+                        let key = SolidStart::key_of(ray, lanes.start.class());
+                        memory.solid_start = Some(SolidStart { owner, key, hit });
+                    }
+                    _ => {}
+                }
+                end!($at, traced)
+            }};
+        }
         loop {
             // Down from `depth` to the deepest node holding the position;
             // the empty cube found there, its corner and log2 of its side.
@@ -147,17 +180,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                             let halves = (Vec3A::splat(pow2(half_log)), half_log);
                             lanes.half_of(key, at, halves, &mut at, &mut known_log);
                         }
-                        end!(
-                            at,
-                            self.hit(
-                                &lanes,
-                                key,
-                                min + whole((at - min_f).into()),
-                                material,
-                                steps,
-                                placed_key
-                            )
-                        );
+                        end_hit!(at, min + whole((at - min_f).into()), material);
                     }
                     NodeKind::Brick {
                         occupancy,
@@ -174,17 +197,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                             let bit = group_bit | spread(upper);
                             if occupancy >> bit & 1 != 0 {
                                 let material = self.brick_material(occupancy, materials, bit);
-                                end!(
-                                    cell,
-                                    self.hit(
-                                        &lanes,
-                                        key,
-                                        min + whole((cell - min_f).into()),
-                                        material,
-                                        steps,
-                                        placed_key
-                                    )
-                                );
+                                end_hit!(cell, min + whole((cell - min_f).into()), material);
                             }
                             (cell, 0)
                         };

@@ -365,6 +365,12 @@ impl Start {
         }
     }
 
+    /// [`Start::class_of`] the ray this start is of.
+    #[inline]
+    pub(crate) fn class(&self) -> u32 {
+        self.up.bitmask() | self.down.bitmask() << 3
+    }
+
     /// The part of a direction the start rule reads (which axes it moves
     /// up along, which down), as six bits: rays from one origin with equal
     /// classes start in the same cell. Without the rest of the start.
