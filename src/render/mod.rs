@@ -21,7 +21,6 @@ pub(crate) mod debug_view;
 pub(crate) mod fit;
 #[cfg(feature = "std")]
 pub(crate) mod framebuffer;
-pub(crate) mod memories;
 pub(crate) mod options;
 #[cfg(feature = "rayon")]
 pub(crate) mod parallel;

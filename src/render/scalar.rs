@@ -6,12 +6,12 @@
 
 use crate::error::Error;
 use crate::render::camera::Camera;
-use crate::render::memories::Memories;
 use crate::render::options::RenderOptions;
 use crate::render::shader::{FrameJob, Kernel, Shader};
 use crate::render::stats::{RayStats, Rect};
 use crate::render::tiles::render_tiles;
 use crate::scene::Scene;
+use crate::scene::WalkMemory;
 
 /// Renders pixel `(x, y)` of `camera`'s frame: its packed color and the rays
 /// it traced. The same value every renderer (span, crop, frame, threaded)
@@ -32,7 +32,7 @@ pub fn render_pixel<S: Scene + ?Sized>(
     impl<S: Scene + ?Sized> FrameJob for Pixel<'_, S> {
         type Output = (u32, RayStats);
         fn run<K: Kernel>(self, kernel: &K) -> (u32, RayStats) {
-            kernel.pixel(self.scene, self.x, self.y, 0.0, &mut Memories::default())
+            kernel.pixel(self.scene, self.x, self.y, 0.0, &mut WalkMemory::new())
         }
     }
     Shader::new(options, camera, scene.materials()).dispatch(Pixel { scene, x, y })

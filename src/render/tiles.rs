@@ -8,10 +8,10 @@
 //! byte-identical.
 
 use crate::render::camera::Camera;
-use crate::render::memories::Memories;
 use crate::render::shader::Kernel;
 use crate::render::stats::{RayStats, Rect};
 use crate::scene::Scene;
+use crate::scene::WalkMemory;
 
 /// Side of a tile in pixels: 256 rays share one walk of the tree's empty
 /// space. Measured at 1920x1080 on the size-250 terrain (with the first,
@@ -33,7 +33,7 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
     let mut stats = RayStats::default();
     // One memory for the whole rectangle: a tile's first ray begins from
     // the last ray of the tile before, its neighbour.
-    let mut memory = Memories::default();
+    let mut memory = WalkMemory::new();
     // Offsets inside the rectangle, so that no sum passes u32::MAX for a
     // rectangle that reaches the last pixel of the largest frame.
     for dy0 in (0..rect.height).step_by(TILE as usize) {

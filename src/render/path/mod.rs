@@ -29,12 +29,12 @@ use glam::{IVec3, Vec3};
 use crate::geom::Ray;
 use crate::material::{MaterialKind, Materials};
 use crate::render::camera::Camera;
-use crate::render::memories::Memories;
 use crate::render::options::{Background, Bounces, Fog, RenderOptions};
 use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{pack_mean, sky, to_u8, SKY_HORIZON};
 use crate::render::stats::RayStats;
+use crate::scene::WalkMemory;
 use crate::scene::{Reach, Scene};
 
 use bsdf::{glossy, microfacet};
@@ -134,9 +134,9 @@ pub(crate) struct Path<'s, 'm, const GLASS: bool, const METAL: bool, const EMIT:
 
 impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS, METAL, EMIT> {
     /// Pixel `(x, y)`: the mean radiance of its samples, and the rays
-    /// traced (the kernel's `pixel`). Its camera rays, light rays and
-    /// diffuse bounces walk with `memories`, each kind sharing one with the
-    /// neighbouring pixels' rays of that kind (where a walk begins, never
+    /// traced (the kernel's `pixel`). Its camera rays walk with `memory`,
+    /// shared with the neighbouring pixels' camera rays; each later ray of
+    /// a path begins from the hit before it (where a walk begins, never
     /// what it hits).
     pub(crate) fn trace_pixel<'s, S: Scene + ?Sized>(
         &self,
@@ -144,7 +144,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
         x: u32,
         y: u32,
         t_start: f32,
-        memories: &mut Memories<'s>,
+        memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats) {
         let samples = u32::from(self.setup.samples.max(1));
         let mut sum = Vec3::ZERO;
@@ -173,7 +173,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
                 event: 0,
             };
             let hits = stats.primary_hits;
-            let radiance = self.radiance(scene, &ray, t_start, memories, &mut rng, &mut stats);
+            let radiance = self.radiance(scene, &ray, t_start, memory, &mut rng, &mut stats);
             let missed = stats.primary_hits == hits;
             let radiance = match (missed, background) {
                 (true, Some(color)) => color,
@@ -199,15 +199,19 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
         scene: &'s S,
         camera_ray: &Ray,
         t_start: f32,
-        memories: &mut Memories<'s>,
+        memory: &mut WalkMemory<'s>,
         rng: &mut Rng,
         stats: &mut RayStats,
     ) -> Vec3 {
         let setup = self.setup;
         let mut ray = *camera_ray;
         let mut hit = scene
-            .trace_with(&ray, Reach::after(t_start), &mut memories.primary, None)
+            .trace_with(&ray, Reach::after(t_start), memory, None)
             .hit;
+        // The path's rays each begin from the hit before them, known to the
+        // walk that found it: one memory follows the path (the camera's
+        // stays with the camera's walks, for the next pixel).
+        let path_memory = &mut memory.clone();
         *stats += primary(hit.as_ref());
         let first_t = hit.map(|h| h.t);
         let mut beta = Vec3::ONE;
@@ -253,7 +257,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
                     count_emission = true;
                     stats.reflection_rays += 1;
                     ray = next;
-                    hit = scene.trace(&ray);
+                    hit = scene.trace_with(&ray, Reach::ALL, path_memory, None).hit;
                     continue;
                 }
                 MaterialKind::Glass if GLASS && choice.x < material.transparency() => {
@@ -272,7 +276,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
                             beta *= weight;
                             count_emission = true;
                             ray = next;
-                            hit = scene.trace(&ray);
+                            hit = scene.trace_with(&ray, Reach::ALL, path_memory, None).hit;
                             continue;
                         }
                         Glass::Inside {
@@ -302,7 +306,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
                     face,
                     rng,
                     stats,
-                    &mut memories.shadow,
+                    &mut path_memory.clone(),
                 );
             if diffuse_left == 0 {
                 break;
@@ -318,14 +322,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
             ray = next;
             // (Neighbouring pixels' bounces leave neighbouring hits: their
             // walks share a memory, as occlusion rays do.)
-            hit = scene
-                .trace_with(
-                    &ray,
-                    Reach::within(f32::INFINITY),
-                    &mut memories.occlusion,
-                    None,
-                )
-                .hit;
+            hit = scene.trace_with(&ray, Reach::ALL, path_memory, None).hit;
         }
         match (setup.fog, first_t) {
             (Some(fog), Some(t)) => {

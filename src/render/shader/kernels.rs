@@ -10,7 +10,6 @@ use glam::{U8Vec3, UVec3};
 
 use crate::geom::Ray;
 use crate::render::debug_view::{box_color, enters_near_edge};
-use crate::render::memories::Memories;
 use crate::render::options::Background;
 #[cfg(feature = "path")]
 use crate::render::path::{Path, PathSetup};
@@ -19,6 +18,7 @@ use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{face_index, fog_blend, lit, pack, pack_mean, sky, FLAT_SKY};
 use crate::render::shader::{FrameJob, Kernel, Shader};
 use crate::render::stats::RayStats;
+use crate::scene::WalkMemory;
 use crate::scene::{Reach, Scene};
 
 impl<'m> Shader<'_, 'm> {
@@ -112,7 +112,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Kernel
         x: u32,
         y: u32,
         t_start: f32,
-        memory: &mut Memories<'s>,
+        memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats) {
         self.trace_pixel(scene, x, y, t_start, memory)
     }
@@ -129,11 +129,11 @@ impl Kernel for Flat<'_, '_, '_> {
         x: u32,
         y: u32,
         t_start: f32,
-        memory: &mut Memories<'s>,
+        memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats) {
         let ray = self.0.camera.get_ray(x, y);
         let hit = scene
-            .trace_with(&ray, Reach::after(t_start), &mut memory.primary, None)
+            .trace_with(&ray, Reach::after(t_start), memory, None)
             .hit;
         let rgba = hit.map_or_else(|| self.0.miss(FLAT_SKY), |h| pack(h.voxel.color));
         (rgba, primary(hit.as_ref()))
@@ -150,7 +150,7 @@ impl Kernel for DebugView<'_, '_, '_> {
         x: u32,
         y: u32,
         _: f32,
-        _: &mut Memories<'s>,
+        _: &mut WalkMemory<'s>,
     ) -> (u32, RayStats) {
         let ray = self.0.camera.get_ray(x, y);
         let mut edge = None;
@@ -203,7 +203,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         x: u32,
         y: u32,
         t_start: f32,
-        memory: &mut Memories<'s>,
+        memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats) {
         let camera = self.0.camera;
         // (Occlusion and fog test their settings anyway.)
@@ -253,11 +253,11 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         x: u32,
         y: u32,
         sample: u32,
-        memory: &mut Memories<'s>,
+        memory: &mut WalkMemory<'s>,
     ) -> (U8Vec3, RayStats) {
         let shader = self.0;
         let hit = scene
-            .trace_with(ray, Reach::after(t_start), &mut memory.primary, None)
+            .trace_with(ray, Reach::after(t_start), memory, None)
             .hit;
         let mut stats = primary(hit.as_ref());
         let Some(hit) = hit else {
@@ -271,8 +271,11 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
                 let blocker = scene
                     .trace_with(
                         &shadow,
-                        Reach::within(f32::INFINITY),
-                        &mut memory.shadow,
+                        Reach::ALL,
+                        // Begun from the hit's node, known to the walk
+                        // that found it (a copy: the next pixel's primary
+                        // ray begins from that hit too).
+                        &mut memory.clone(),
                         None,
                     )
                     .hit;
@@ -294,7 +297,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
                                 .trace_with(
                                     &r,
                                     Reach::within(ao.distance),
-                                    &mut memory.occlusion,
+                                    &mut memory.clone(),
                                     None,
                                 )
                                 .hit

@@ -28,7 +28,6 @@ use glam::{U8Vec3, Vec3};
 use crate::material::Materials;
 use crate::material::SceneMaterials;
 use crate::render::camera::Camera;
-use crate::render::memories::Memories;
 use crate::render::options::{Background, RenderOptions};
 #[cfg(feature = "path")]
 use crate::render::path::PathSetup;
@@ -37,6 +36,7 @@ use crate::render::plan::{EffectPlan, Look};
 use crate::render::shade::{face_weights, pack};
 use crate::render::stats::RayStats;
 use crate::scene::Scene;
+use crate::scene::WalkMemory;
 
 mod kernels;
 #[cfg(all(test, feature = "alloc"))]
@@ -141,7 +141,7 @@ pub(crate) trait Kernel: Sync {
         x: u32,
         y: u32,
         t_start: f32,
-        memory: &mut Memories<'s>,
+        memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats);
 
     /// Whether the kernel's primary rays use a tile's clear distance (the
