@@ -15,8 +15,8 @@ use crate::scene::{Hit, Reach, Scene, WalkMemory};
 
 /// The direct light at `hit` (entered through `face`) as a factor of the
 /// albedo: the outgoing radiance of a white Lambertian face there. Its
-/// rays toward the lights walk with `memory`, which neighbouring hits'
-/// light rays share (where a walk begins, never what it hits).
+/// rays toward the lights each begin from `memory`, left at the hit by the
+/// walk that found it (each takes a copy).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn light<'s, S: Scene + ?Sized, const EMIT: bool>(
     scene: &'s S,
@@ -26,7 +26,7 @@ pub(super) fn light<'s, S: Scene + ?Sized, const EMIT: bool>(
     face: Face,
     rng: &mut Rng,
     stats: &mut RayStats,
-    memory: &mut WalkMemory<'s>,
+    memory: &WalkMemory<'s>,
 ) -> Vec3 {
     let n = face.normal().as_vec3();
     let mut light = Vec3::ZERO;
@@ -37,7 +37,7 @@ pub(super) fn light<'s, S: Scene + ?Sized, const EMIT: bool>(
             if let Some(shadow) = secondary(ray, hit, dir) {
                 stats.light_rays += 1;
                 if scene
-                    .trace_with(&shadow, Reach::within(f32::INFINITY), memory, None)
+                    .trace_with(&shadow, Reach::ALL, &mut memory.clone(), None)
                     .hit
                     .is_none()
                 {
@@ -66,7 +66,7 @@ fn emitter<'s, S: Scene + ?Sized>(
     n: Vec3,
     rng: &mut Rng,
     stats: &mut RayStats,
-    memory: &mut WalkMemory<'s>,
+    memory: &WalkMemory<'s>,
 ) -> Vec3 {
     let count = setup.emitters.len();
     let pick = rng.next();
@@ -111,7 +111,7 @@ fn emitter<'s, S: Scene + ?Sized>(
     };
     stats.light_rays += 1;
     let seen = scene
-        .trace_with(&shadow, Reach::within(f32::INFINITY), memory, None)
+        .trace_with(&shadow, Reach::ALL, &mut memory.clone(), None)
         .hit;
     let Some(seen) = seen.filter(|h| h.pos == lamp) else {
         return Vec3::ZERO;

@@ -11,9 +11,10 @@
 //! none. Every random number is keyed by pixel, sample and path event
 //! ([`Rng`]), so a pixel is the same on every thread count, crop, backend
 //! and target. Only camera rays start at the tile's clear distance; every
-//! later ray walks from its own origin. Camera rays, light rays and
-//! diffuse bounces each share a walk memory with the neighbouring pixels'
-//! rays of their kind, which moves where walks begin, never what they hit.
+//! later ray walks from its own origin. Camera rays share a walk memory
+//! with the neighbouring pixels' camera rays; every later ray begins from
+//! the walk that found the hit it leaves (a memory moves where walks
+//! begin, never what they hit).
 //!
 //! Radiance is linear in the units of the face-shaded look (1 is a color's
 //! full 255, colors are albedos as they are), so a diffuse voxel under a
@@ -298,16 +299,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
             let Some(face) = h.face else { break };
             sum += beta
                 * albedo
-                * direct::light::<S, EMIT>(
-                    scene,
-                    setup,
-                    &ray,
-                    &h,
-                    face,
-                    rng,
-                    stats,
-                    &mut path_memory.clone(),
-                );
+                * direct::light::<S, EMIT>(scene, setup, &ray, &h, face, rng, stats, path_memory);
             if diffuse_left == 0 {
                 break;
             }
@@ -320,8 +312,6 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
             count_emission = false;
             stats.reflection_rays += 1;
             ray = next;
-            // (Neighbouring pixels' bounces leave neighbouring hits: their
-            // walks share a memory, as occlusion rays do.)
             hit = scene.trace_with(&ray, Reach::ALL, path_memory, None).hit;
         }
         match (setup.fog, first_t) {
