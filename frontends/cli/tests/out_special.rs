@@ -256,16 +256,19 @@ fn a_terminal_is_refused_a_binary_image() {
 #[test]
 fn a_failing_write_to_standard_output_is_exit_2_and_one_line() {
     let dir = fresh_dir("out_special", "out-stdout");
-    // Nobody reads: EPIPE (Rust's runtime ignores SIGPIPE).
-    let mut child = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
+    // Nobody reads: EPIPE (Rust's runtime ignores SIGPIPE). The reader is
+    // closed before the child starts, so no write can land in the pipe's
+    // buffer first.
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let out = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
         .args(SMALL)
         .args(["--out", "-"])
-        .stdout(Stdio::piped())
+        .stdout(writer)
         .stderr(Stdio::piped())
-        .spawn()
+        .output()
         .unwrap();
-    drop(child.stdout.take());
-    assert_refused(&child.wait_with_output().unwrap(), &["Broken pipe"]);
+    assert_refused(&out, &["Broken pipe"]);
     // Open only for reading: EBADF, which std's own stdout takes for
     // success.
     let read_only = dir.join("read-only");

@@ -193,10 +193,12 @@ fn out_dash_to_a_full_disk_a_closed_pipe_or_no_stdout_is_one_error_line() {
     let out = run(full.into()).wait_with_output().unwrap();
     assert_refused(&out, &["standard output"]);
 
-    // A pipe whose reader has gone: the write fails with EPIPE.
-    let mut child = run(Stdio::piped());
-    drop(child.stdout.take());
-    let out = child.wait_with_output().unwrap();
+    // A pipe whose reader has gone: the write fails with EPIPE. (Closed
+    // before the child starts: a child that wrote a small frame into the
+    // pipe's buffer before a later close would succeed.)
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let out = run(writer.into()).wait_with_output().unwrap();
     assert_refused(&out, &["standard output"]);
 
     // Closed (`>&-`): Rust's runtime puts /dev/null there, which must not
