@@ -2,8 +2,8 @@
 //! region, or, for a walk begun at a later distance, in a cube the descent
 //! narrows by key comparisons; and when a [`WalkMemory`] knows the way, at
 //! the deepest node of the last walk's path whose cube still holds the new
-//! start (the restart a move makes, across rays). The start-cell lookup of
-//! a primary ray is taken the same way.
+//! start (the restart a move makes, across rays). A lookup of one
+//! position's material (`OctreeScene::material`) descends the same way.
 
 use glam::{IVec3, Vec3A};
 

@@ -106,8 +106,8 @@ pub struct OctreeScene<N, M> {
 
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// The material at `pos` (0 for empty or outside the bounds): a
-    /// descent from the root, the one a walk's start-cell lookup makes
-    /// with a memory that knows nothing yet.
+    /// descent from the root, as a walk's descent goes with a memory that
+    /// knows nothing yet.
     #[must_use]
     pub fn material(&self, pos: IVec3) -> u8 {
         self.material_with(pos, &mut WalkMemory::new())
