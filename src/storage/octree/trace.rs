@@ -24,8 +24,7 @@ use crate::storage::octree::grid::{changed_bits, cube_at, pow2, spread, whole};
 use crate::storage::octree::memory::{Begun, PATH};
 use crate::storage::octree::node::{child_rank, BrickMaterials, Node, NodeKind, BRICK, GROUP};
 use crate::storage::octree::OctreeScene;
-use crate::storage::walk::Lanes;
-use crate::storage::walk::{Key, Start};
+use crate::storage::walk::{Key, Lanes, Start};
 
 /// The cube of side 2^log at the corner `cube` (exact floats) as the box
 /// a visitor is shown.
