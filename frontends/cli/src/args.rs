@@ -29,10 +29,9 @@ pub use values::{
     version,
     about,
     args_override_self = true,
-    // `voxtrace stitch ...` or a render's flags, not both; no `help`
-    // subcommand (`--help` is the way, as before).
+    // `voxtrace stitch ...` or a render's flags, not both; `voxtrace help`
+    // is `--help`, as a new user types it.
     args_conflicts_with_subcommands = true,
-    disable_help_subcommand = true,
 )]
 pub struct Args {
     /// Storage backend.
