@@ -171,8 +171,8 @@ pub struct Args {
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=4096))]
     pub spp: u16,
 
-    /// Distance fog, all fog at 3 x --size voxels from the camera (1.5 x the
-    /// model's largest side with --vox).
+    /// Distance fog, all fog at 3 x --size voxels from the camera (with
+    /// --vox, at twice the distance to the model's far side).
     #[arg(long)]
     pub fog: bool,
 

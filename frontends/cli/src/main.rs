@@ -80,7 +80,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     let range = frame_range(args.frames, args.frame_range, &args.farm)?;
     let cameras = turntable_cameras(settings, range, args.frames.unwrap_or(1))?;
     let first = &cameras[0].camera;
-    let (options, plan) = resolve_effects(&args.effects(), &subject);
+    let (options, plan) = resolve_effects(&args.effects(), &subject, &settings);
     let scene = subject.tile_scene();
     let tile = farm::select(&args.farm, first, &options, scene, args.backend, &args.out)?;
     let region = region(tile.as_ref(), args.region, first)?;
@@ -200,11 +200,17 @@ fn region(tile: Option<&TileJob>, asked: Option<Rect>, camera: &Camera) -> Resul
     Ok(region)
 }
 
-/// The options the `effects` ask for on `subject` (a `.vox` file's light
-/// folded in, as every frontend reads them), and the plan of what runs.
-fn resolve_effects(effects: &Effects, subject: &Subject<'_>) -> (RenderOptions, EffectPlan) {
+/// The options the `effects` ask for on `subject` seen from `view` (a
+/// `.vox` file's light folded in, fog scaled to the view, as every
+/// frontend reads them), and the plan of what runs.
+fn resolve_effects(
+    effects: &Effects,
+    subject: &Subject<'_>,
+    view: &CameraSettings,
+) -> (RenderOptions, EffectPlan) {
     let model = subject.model();
-    let options = voxtrace_flags::render_options(effects, subject.bounds(), model);
+    let distance = (view.lookfrom - view.lookat).length();
+    let options = voxtrace_flags::render_options(effects, subject.bounds(), model, distance);
     let plan = EffectPlan::new(&options, model.map(materials_of));
     (options, plan)
 }
