@@ -29,10 +29,9 @@ pub use values::{
     version,
     about,
     args_override_self = true,
-    // `voxtrace stitch ...` or a render's flags, not both; no `help`
-    // subcommand (`--help` is the way, as before).
+    // `voxtrace stitch ...` or a render's flags, not both; `voxtrace help`
+    // is `--help`, as a new user types it.
     args_conflicts_with_subcommands = true,
-    disable_help_subcommand = true,
 )]
 pub struct Args {
     /// Storage backend.
@@ -172,8 +171,8 @@ pub struct Args {
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=4096))]
     pub spp: u16,
 
-    /// Distance fog, all fog at 3 x --size voxels from the camera (1.5 x the
-    /// model's largest side with --vox).
+    /// Distance fog, all fog at 3 x --size voxels from the camera (with
+    /// --vox, at twice the distance to the model's far side).
     #[arg(long)]
     pub fog: bool,
 

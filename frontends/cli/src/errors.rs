@@ -67,7 +67,7 @@ pub fn one_line(error: &clap::Error, argv: &[String]) -> String {
         }
         line.push_str(part);
     }
-    if let Some(tip) = negative_value_tip(error, argv) {
+    if let Some(tip) = negative_value_tip(error, argv).or_else(|| vox_file_tip(error)) {
         line.push_str("; ");
         line.push_str(&tip);
     }
@@ -93,6 +93,27 @@ fn negative_value_tip(error: &clap::Error, argv: &[String]) -> Option<String> {
     let flag = argv.get(at.checked_sub(1)?)?;
     flag.starts_with("--")
         .then(|| format!("tip: to pass '{arg}' as the value of {flag}, write {flag}={arg}"))
+}
+
+/// For `voxtrace study.vox`: a .vox file where a subcommand would be (the
+/// first word that is no flag); say that `--vox` renders it.
+fn vox_file_tip(error: &clap::Error) -> Option<String> {
+    if error.kind() != ErrorKind::InvalidSubcommand {
+        return None;
+    }
+    let Some(ContextValue::String(arg)) = error.get(ContextKind::InvalidSubcommand) else {
+        return None;
+    };
+    let is_vox = std::path::Path::new(arg)
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("vox"));
+    // Quoted as a shell would need it when it has spaces.
+    let shown = if arg.contains(char::is_whitespace) {
+        format!("'{arg}'")
+    } else {
+        arg.clone()
+    };
+    is_vox.then(|| format!("tip: to render a .vox file, write --vox {shown}"))
 }
 
 fn text_has_tip(error: &clap::Error) -> bool {

@@ -119,8 +119,7 @@ impl Job<'_> {
     }
 
     /// Builds the scene once and renders every frame's camera into its
-    /// path, `out` being the first path or `-` (standard output); adds a
-    /// note when a camera starts inside a voxel.
+    /// path, `out` being the first path or `-` (standard output).
     ///
     /// The first path's file is created before the build, so that a bad
     /// path fails before the work: a temporary file beside it from then
@@ -135,7 +134,6 @@ impl Job<'_> {
         cameras: &[Frame],
         out: &Path,
         paths: &[PathBuf],
-        notes: &mut Vec<String>,
     ) -> Result<Totals, String> {
         let mut first = if output::is_stdout(out) {
             None
@@ -144,17 +142,6 @@ impl Job<'_> {
         };
         let threaded = self.threads != Some(1);
         let region = self.region;
-        let bounds = self.subject.bounds();
-        let inside = cameras.iter().any(|frame| {
-            let cell = frame.settings.lookfrom.floor().as_ivec3();
-            bounds.contains(cell) && self.subject.material(cell) != 0
-        });
-        if inside {
-            notes.push(
-                "the camera starts inside a solid voxel: its rays see only that voxel (move it with --position)"
-                    .to_string(),
-            );
-        }
         on_threads(self.threads, || {
             let spinner = Spinner::start(format!("building the {} scene", self.backend.name()));
             let (built, build, materials) = self.subject.build(self.backend, threaded)?;

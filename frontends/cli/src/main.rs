@@ -71,6 +71,7 @@ fn main() -> ExitCode {
 /// Apart from `args` itself, only this file reads [`Args`]: every stage
 /// takes plain values.
 fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
+    let started = std::time::Instant::now();
     let random_terrain = args.vox.is_none() && args.seed.is_none();
     farm::check_flags(&args.farm, random_terrain, args.frames)?;
     let subject = Subject::load(args.vox.as_deref(), args.seed, args.size)?;
@@ -79,7 +80,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     let range = frame_range(args.frames, args.frame_range, &args.farm)?;
     let cameras = turntable_cameras(settings, range, args.frames.unwrap_or(1))?;
     let first = &cameras[0].camera;
-    let (options, plan) = resolve_effects(&args.effects(), &subject);
+    let (options, plan) = resolve_effects(&args.effects(), &subject, &settings);
     let scene = subject.tile_scene();
     let tile = farm::select(&args.farm, first, &options, scene, args.backend, &args.out)?;
     let region = region(tile.as_ref(), args.region, first)?;
@@ -88,6 +89,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     let files = args.frames.map(|_| range);
     let paths = output_paths(out, format, tile.is_some(), &args.out, files)?;
     let mut notes = notes(&options, &plan, &args.given(matches), &settings, format);
+    notes.extend(camera_inside_note(&cameras, &subject, args.camera));
     let (backend, threads, tile) = (args.backend, args.threads, tile.as_ref());
     let job = Job {
         backend,
@@ -99,12 +101,40 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
         tile,
     };
     job.check_memory(args.max_memory)?;
-    let totals = job.render_all(&cameras, out, &paths, &mut notes)?;
+    let totals = job.render_all(&cameras, out, &paths)?;
     if args.stats {
         job.print_stats(&totals, &plan, &cameras[0].settings, args.up.is_some());
     }
     report(&subject, &notes);
+    finished(&paths, region, started.elapsed());
     Ok(())
+}
+
+/// On a terminal, where the render went, its size and its time; nothing
+/// for a script (standard error not a terminal), as before.
+fn finished(paths: &[PathBuf], region: Rect, took: std::time::Duration) {
+    use std::io::IsTerminal;
+    if !std::io::stderr().is_terminal() {
+        return;
+    }
+    let size = format!("{}x{}", region.width, region.height);
+    let secs = took.as_secs_f64();
+    match paths {
+        [one] if output::is_stdout(one) => {
+            say!("wrote the {size} frame to standard output in {secs:.1} s");
+        }
+        [one] => {
+            let bytes = std::fs::metadata(one).map_or(0, |m| m.len());
+            let bytes = voxtrace_cli::human_bytes(u128::from(bytes));
+            say!("wrote {}: {size}, {bytes}, {secs:.1} s", one.display());
+        }
+        many => say!(
+            "wrote {} frames of {size}, {} to {}, in {secs:.1} s",
+            many.len(),
+            many[0].display(),
+            many[many.len() - 1].display()
+        ),
+    }
 }
 
 /// The frames to render: the run of `--tasks` (`farm`), else
@@ -170,11 +200,17 @@ fn region(tile: Option<&TileJob>, asked: Option<Rect>, camera: &Camera) -> Resul
     Ok(region)
 }
 
-/// The options the `effects` ask for on `subject` (a `.vox` file's light
-/// folded in, as every frontend reads them), and the plan of what runs.
-fn resolve_effects(effects: &Effects, subject: &Subject<'_>) -> (RenderOptions, EffectPlan) {
+/// The options the `effects` ask for on `subject` seen from `view` (a
+/// `.vox` file's light folded in, fog scaled to the view, as every
+/// frontend reads them), and the plan of what runs.
+fn resolve_effects(
+    effects: &Effects,
+    subject: &Subject<'_>,
+    view: &CameraSettings,
+) -> (RenderOptions, EffectPlan) {
     let model = subject.model();
-    let options = voxtrace_flags::render_options(effects, subject.bounds(), model);
+    let distance = (view.lookfrom - view.lookat).length();
+    let options = voxtrace_flags::render_options(effects, subject.bounds(), model, distance);
     let plan = EffectPlan::new(&options, model.map(materials_of));
     (options, plan)
 }
@@ -197,6 +233,31 @@ fn notes(
     notes
 }
 
+/// A note when a frame's camera starts inside a solid voxel (its rays see
+/// only that voxel), saying what moves it: `--position`, or for a file's
+/// camera (`file_camera`, which refuses `--position`) another camera or
+/// the default view.
+fn camera_inside_note(
+    cameras: &[Frame],
+    subject: &Subject,
+    file_camera: Option<u32>,
+) -> Option<String> {
+    let bounds = subject.bounds();
+    let inside = cameras.iter().any(|frame| {
+        let cell = frame.settings.lookfrom.floor().as_ivec3();
+        bounds.contains(cell) && subject.material(cell) != 0
+    });
+    let remedy = match file_camera {
+        Some(n) => format!(
+            "the file's camera {n} sits there: choose another with --camera, or leave it out for the default view"
+        ),
+        None => "move it with --position".to_string(),
+    };
+    inside.then(|| {
+        format!("the camera starts inside a solid voxel: its rays see only that voxel ({remedy})")
+    })
+}
+
 /// Checks the output `out` in `format` before the render, so that a bad
 /// one fails now, not after it: a `tiled` run's part is PNG, standard
 /// output (`-`) takes one still that is not a tile, and is not a
@@ -216,6 +277,13 @@ fn output_paths(
         return Err(format!(
             "--tiles writes PNG parts (their place in the frame is a PNG text chunk), not --out {}",
             out.display()
+        ));
+    }
+    // `%t` names a tile's part: without --tiles it would be written as is.
+    if !tiled && pattern.to_string_lossy().contains("%t") {
+        return Err(format!(
+            "--out {} has %t, the tile number of --tiles parts: without --tiles, name one file",
+            pattern.display()
         ));
     }
     let to_stdout = output::is_stdout(out);

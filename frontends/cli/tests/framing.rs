@@ -148,3 +148,66 @@ fn framed_boxes_are_in_view_and_clear_of_the_border() {
         }
     }
 }
+
+/// RGBA of the PNG at `path`.
+fn rgba_of(path: &Path) -> Vec<u8> {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    buf.truncate(info.buffer_size());
+    assert_eq!(info.color_type, png::ColorType::Rgba);
+    buf
+}
+
+/// `--fog` on a framed model shows the model's depth, not the fog's
+/// color: over the model's pixels the fog's share (how far each moved
+/// toward the horizon color) averages well under a half, and is there.
+#[test]
+fn fog_on_a_model_is_scaled_to_the_framed_view() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("framing");
+    std::fs::create_dir_all(&dir).unwrap();
+    let horizon = [200.0f32, 224.0, 245.0];
+    let render = |fog: bool| {
+        let out = dir.join(format!("fog_{fog}.png"));
+        let mut command = Command::new(env!("CARGO_BIN_EXE_voxtrace"));
+        command.args(["--vox", SAMPLE, "--background", "transparent"]);
+        command.args([
+            "--width",
+            "96",
+            "--height",
+            "54",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        if fog {
+            command.arg("--fog");
+        }
+        let result = command.output().unwrap();
+        assert!(
+            result.status.success(),
+            "{}",
+            String::from_utf8_lossy(&result.stderr)
+        );
+        rgba_of(&out)
+    };
+    let (plain, fogged) = (render(false), render(true));
+    let (mut share, mut counted) = (0.0f32, 0u32);
+    for (p, f) in plain.chunks_exact(4).zip(fogged.chunks_exact(4)) {
+        if p[3] == 0 {
+            continue;
+        }
+        // The share along the line from the plain color to the horizon.
+        let toward: [f32; 3] = core::array::from_fn(|c| horizon[c] - f32::from(p[c]));
+        let moved: [f32; 3] = core::array::from_fn(|c| f32::from(f[c]) - f32::from(p[c]));
+        let length2: f32 = toward.iter().map(|t| t * t).sum();
+        if length2 < 40.0 * 40.0 {
+            continue; // too close to the horizon color to tell
+        }
+        share += toward.iter().zip(&moved).map(|(t, m)| t * m).sum::<f32>() / length2;
+        counted += 1;
+    }
+    assert!(counted > 200, "{counted} model pixels");
+    let mean = share / counted as f32;
+    assert!(mean > 0.05 && mean < 0.5, "the fog's mean share is {mean}");
+}

@@ -12,6 +12,8 @@ use std::time::{Duration, Instant};
 use common::limits::{check_contract, run_limited, tools_present};
 use common::parts::numbered_part;
 use common::run::{assert_refused, fresh_dir, stderr};
+#[cfg(unix)]
+use common::terminal::Pty;
 use voxtrace_cli::part::write_part;
 use voxtrace_cli::tiles::Grid;
 
@@ -224,11 +226,11 @@ fn out_dash_to_a_full_disk_a_closed_pipe_or_no_stdout_is_one_error_line() {
 #[cfg(unix)]
 #[test]
 fn out_dash_refuses_a_terminal() {
-    let Some(terminal) = pseudo_terminal() else {
+    let Some(pty) = Pty::open() else {
         eprintln!("skipped: no pseudo-terminal here");
         return;
     };
-    let terminal = open_terminal(&terminal);
+    let terminal = pty.terminal();
     let dir = scratch("stdout-tty");
     two_tiles(&dir);
     let out = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
@@ -245,48 +247,15 @@ fn out_dash_refuses_a_terminal() {
 #[cfg(unix)]
 #[test]
 fn out_a_terminal_by_its_path_is_refused() {
-    let Some(terminal) = pseudo_terminal() else {
+    let Some(pty) = Pty::open() else {
         eprintln!("skipped: no pseudo-terminal here");
         return;
     };
     let dir = scratch("path-tty");
     two_tiles(&dir);
-    let terminal = terminal.to_str().unwrap();
+    let terminal = pty.path.to_str().unwrap();
     let out = stitch_in(&dir, &["t-0.png", "t-1.png", "--out", terminal]);
     assert_refused(&out, &["terminal", terminal, "--out FILE"]);
-}
-
-/// Opens the terminal at `path` for reading and writing.
-#[cfg(unix)]
-fn open_terminal(path: &Path) -> std::fs::File {
-    std::fs::OpenOptions::new()
-        .read(true)
-        .write(true)
-        .open(path)
-        .unwrap()
-}
-
-/// The path of the terminal end of a new pseudo-terminal (its other end is
-/// leaked, so that the terminal stays: the test is short).
-#[cfg(unix)]
-fn pseudo_terminal() -> Option<PathBuf> {
-    #[allow(unsafe_code)]
-    // SAFETY: plain libc calls on a descriptor this function owns; the
-    // name buffer is large and NUL-terminated by ptsname_r on success.
-    let name = unsafe {
-        let master = libc::posix_openpt(libc::O_RDWR | libc::O_NOCTTY);
-        if master < 0 || libc::grantpt(master) != 0 || libc::unlockpt(master) != 0 {
-            return None;
-        }
-        let mut name = [0 as libc::c_char; 256];
-        if libc::ptsname_r(master, name.as_mut_ptr(), name.len()) != 0 {
-            return None;
-        }
-        std::ffi::CStr::from_ptr(name.as_ptr())
-            .to_string_lossy()
-            .into_owned()
-    };
-    Some(PathBuf::from(name))
 }
 
 /// SIGTERM while the stitch waits on a part (a FIFO no one writes): exit

@@ -73,10 +73,20 @@ fn lighting(effects: &Effects, model: Option<&VoxModel>) -> Lighting {
     light
 }
 
-/// The options `effects` ask for on the scene `bounds` (fog thickens over
-/// their largest side), lit as `model` says when there is one.
+/// The options `effects` ask for on the scene `bounds`, lit as `model`
+/// says when there is one. Fog thickens over the terrain's largest side
+/// (3 x `--size`); on a model, framed from afar, it is scaled to the view
+/// `view_distance` (the camera's distance to what it looks at): all fog at
+/// twice the distance to the model's far side, so the model shows its
+/// depth instead of the fog's color.
 #[must_use]
-pub fn render_options(effects: &Effects, bounds: IAabb, model: Option<&VoxModel>) -> RenderOptions {
+pub fn render_options(
+    effects: &Effects,
+    bounds: IAabb,
+    model: Option<&VoxModel>,
+    view_distance: f32,
+) -> RenderOptions {
+    let side = bounds.size().max_element() as f32;
     let file_sun = model.and_then(|m| m.settings().sun).map(|s| s.direction);
     RenderOptions {
         flat: effects.flat,
@@ -86,8 +96,12 @@ pub fn render_options(effects: &Effects, bounds: IAabb, model: Option<&VoxModel>
         occlusion: effects.occlusion,
         samples: effects.samples,
         fog: effects.fog.then_some(Fog {
-            // 3 x --size for the terrain: one and a half times the volume's side.
-            distance: 1.5 * bounds.size().max_element() as f32,
+            distance: match model {
+                // 3 x --size for the terrain: one and a half times the
+                // volume's side.
+                None => 1.5 * side,
+                Some(_) => 2.0 * (view_distance + 0.5 * side),
+            },
         }),
         background: effects.background,
         lighting: lighting(effects, model),

@@ -268,7 +268,8 @@ fn render_into(state: &mut State, f: &Frame) -> ErrorCode {
     }
     frame.resize(pixels, 0);
     let model = subject.model();
-    let options = options::render_options(f.effects, f.ao_rays, subject.bounds(), model);
+    let distance = (settings.lookfrom - settings.lookat).length();
+    let options = options::render_options(f.effects, f.ao_rays, subject.bounds(), model, distance);
     let rendered = match scene {
         Some((_, Built::Dense(s))) => draw(s, model, &camera, &options, frame),
         Some((_, Built::Octree(s))) => draw(s, model, &camera, &options, frame),

@@ -15,13 +15,14 @@ pub const FOG: u32 = 2;
 
 /// The options for the toggles in `effects` ([`SHADOWS`], [`FOG`]) and
 /// `ao_rays` ambient-occlusion rays (0: off), over the scene `bounds`
-/// (fog thickens over their largest side), lit as `model` says when there
-/// is one.
+/// seen from `view_distance` away (fog is scaled as the CLI scales it),
+/// lit as `model` says when there is one.
 pub fn render_options(
     effects: u32,
     ao_rays: u16,
     bounds: IAabb,
     model: Option<&VoxModel>,
+    view_distance: f32,
 ) -> RenderOptions {
     let effects = Effects {
         shadows: effects & SHADOWS != 0,
@@ -32,5 +33,5 @@ pub fn render_options(
         fog: effects & FOG != 0,
         ..Effects::default()
     };
-    voxtrace_flags::render_options(&effects, bounds, model)
+    voxtrace_flags::render_options(&effects, bounds, model, view_distance)
 }

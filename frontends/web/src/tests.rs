@@ -119,8 +119,11 @@ fn every_view_zoom_and_effect_of_the_sample_is_the_library_render_of_its_camera(
             for (effects, ao) in [(0, 0), (options::SHADOWS, 0), (options::FOG, 0), (0, 4)] {
                 let pixels = frame(1, view, abc, zoom, effects, ao);
                 let flags = message();
+                let seen_from = parse_camera(&flags);
+                let distance = (seen_from.lookfrom - seen_from.lookat).length();
+                let bounds = model.bounds();
                 let options =
-                    options::render_options(effects, ao as u16, model.bounds(), Some(&model));
+                    options::render_options(effects, ao as u16, bounds, Some(&model), distance);
                 assert!(pixels == library(&scene, &flags, &options), "{flags}");
                 assert!(
                     frame(0, view, abc, zoom, effects, ao) == pixels,

@@ -1,0 +1,145 @@
+//! Messages that lead the way: what a new user types first gets an answer
+//! that says what to type instead, and a render on a terminal says where
+//! it went; a script (standard error not a terminal) gets nothing extra.
+
+mod common;
+
+use std::process::{Command, Stdio};
+
+use common::run::{assert_refused, scratch_in, stderr, voxtrace};
+use common::vox_bytes::{chunk, dict, file, model};
+
+fn scratch(name: &str) -> std::path::PathBuf {
+    scratch_in("guidance", name)
+}
+
+#[test]
+fn a_vox_file_where_a_flag_belongs_says_to_use_vox() {
+    for name in ["study.vox", "My Model.VOX"] {
+        let result = voxtrace(&[name]);
+        let shown = if name.contains(' ') {
+            format!("--vox '{name}'")
+        } else {
+            format!("--vox {name}")
+        };
+        assert_refused(&result, &[name, &shown]);
+    }
+    // Any other stray word is only named.
+    let result = voxtrace(&["render"]);
+    assert_refused(&result, &["render"]);
+    assert!(!stderr(&result).contains("--vox"), "{}", stderr(&result));
+}
+
+#[test]
+fn help_is_a_word_too() {
+    let help = voxtrace(&["help"]);
+    assert!(help.status.success(), "{}", stderr(&help));
+    let text = String::from_utf8_lossy(&help.stdout);
+    assert!(text.contains("Usage: voxtrace"), "{text}");
+    assert_eq!(text, String::from_utf8_lossy(&voxtrace(&["--help"]).stdout));
+    let stitch = voxtrace(&["help", "stitch"]);
+    assert!(stitch.status.success(), "{}", stderr(&stitch));
+    let text = String::from_utf8_lossy(&stitch.stdout);
+    assert!(text.contains("Usage: voxtrace stitch"), "{text}");
+}
+
+#[test]
+fn a_tile_number_in_out_without_tiles_is_refused() {
+    let out = scratch("part-%t.png");
+    let out = out.to_str().unwrap();
+    let result = voxtrace(&[
+        "--size", "8", "--seed", "1", "--width", "8", "--height", "8", "--out", out,
+    ]);
+    assert_refused(&result, &[out, "%t", "--tiles"]);
+    assert!(!std::path::Path::new(out).exists());
+}
+
+/// A file whose only camera sits inside its only voxel.
+fn camera_inside_a_voxel() -> Vec<u8> {
+    let mut chunks = model([3, 3, 3], &[[1, 1, 1, 1]]);
+    let mut camera = 0u32.to_le_bytes().to_vec();
+    dict(
+        &mut camera,
+        &[
+            ("_mode", "pers"),
+            ("_focus", "0.5 0.5 0.5"),
+            ("_angle", "0 0 0"),
+            ("_radius", "0"),
+            ("_fov", "45"),
+        ],
+    );
+    chunks.push(chunk(b"rCAM", &camera, &[]));
+    file(&chunks)
+}
+
+#[test]
+fn a_file_camera_inside_a_voxel_points_to_other_cameras_not_position() {
+    let vox = scratch("inside.vox");
+    std::fs::write(&vox, camera_inside_a_voxel()).unwrap();
+    let out = scratch("inside.png");
+    let result = voxtrace(&[
+        "--vox",
+        vox.to_str().unwrap(),
+        "--camera",
+        "0",
+        "--width",
+        "8",
+        "--height",
+        "8",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let text = stderr(&result);
+    assert!(result.status.success(), "{text}");
+    assert!(text.contains("inside a solid voxel"), "{text}");
+    assert!(text.contains("--camera"), "{text}");
+    assert!(!text.contains("--position"), "{text}");
+}
+
+/// A small terrain seen from outside (the paper's camera starts inside
+/// the ground at this size, which a note would say).
+const SMALL: &[&str] = &[
+    "--size",
+    "8",
+    "--seed",
+    "1",
+    "--width",
+    "16",
+    "--height",
+    "8",
+    "--position",
+    "20,20,20",
+    "--lookat",
+    "0,0,0",
+];
+
+#[cfg(unix)]
+#[test]
+fn a_render_on_a_terminal_says_where_it_went() {
+    let Some(pty) = common::terminal::Pty::open() else {
+        eprintln!("skipped: no pseudo-terminal here");
+        return;
+    };
+    let out = scratch("told.png");
+    let status = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
+        .args(SMALL)
+        .args(["--out", out.to_str().unwrap()])
+        .stderr(pty.terminal())
+        .stdout(Stdio::null())
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let told = pty.written();
+    let bytes = std::fs::metadata(&out).unwrap().len();
+    let line = told
+        .lines()
+        .find(|l| l.starts_with("wrote "))
+        .unwrap_or_else(|| panic!("no 'wrote' line in {told:?}"));
+    assert!(line.contains(out.to_str().unwrap()), "{line}");
+    assert!(line.contains("16x8"), "{line}");
+    assert!(line.contains(&format!("{bytes} bytes")), "{line}");
+    // Not a terminal: nothing but what a script got before (here nothing).
+    let quiet = voxtrace(&[SMALL, &["--out", out.to_str().unwrap()]].concat());
+    assert!(quiet.status.success());
+    assert_eq!(stderr(&quiet), "", "a script's stderr stays empty");
+}
