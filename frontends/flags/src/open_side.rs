@@ -95,3 +95,66 @@ pub fn open_side<S: Scene + ?Sized>(scene: &S, flags: &CameraFlags, stage: &Stag
     }
     best.1
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::framing::Boxes;
+    use voxtrace::glam::{IVec3, U8Vec3, Vec3};
+    use voxtrace::{FnSource, IAabb, OctreeScene, Palette};
+
+    /// A 16x8x16 room with a floor (1), walls (2) on its `-x`, `-z` and
+    /// `+z` sides, open toward `+x`, and three pieces of furniture (3, 4,
+    /// 5) in its middle, which only a view from the open side sees.
+    fn room() -> (impl Scene, IAabb) {
+        let palette = Palette::new(&[U8Vec3::splat(200); 5]);
+        let source = FnSource::new(palette, |p: IVec3| match (p.x, p.y, p.z) {
+            (_, 0, _) => 1,
+            (0, _, _) | (_, _, 0 | 15) => 2,
+            (7..=8, 1, 5..=6) => 3,
+            (7..=8, 1, 8..=9) => 4,
+            (7..=8, 1, 11..=12) => 5,
+            _ => 0,
+        });
+        let bounds = IAabb::new(IVec3::ZERO, IVec3::new(16, 8, 16));
+        (OctreeScene::build(&source, bounds).unwrap(), bounds)
+    }
+
+    #[test]
+    fn the_room_is_seen_from_its_open_side() {
+        let (scene, bounds) = room();
+        let stage = Stage {
+            boxes: Boxes::Bounds(bounds),
+            target: Vec3::splat(8.0),
+            default_position: None,
+        };
+        let flags = CameraFlags {
+            fov: MODEL_FOV,
+            ..CameraFlags::new(960, 540, Aim::Default)
+        };
+        let orbit = open_side(&scene, &flags, &stage);
+        assert!([45.0, 90.0, 135.0].contains(&orbit.yaw), "{orbit:?}");
+        let aimed = CameraFlags {
+            aim: Aim::Orbit(orbit),
+            ..flags
+        };
+        assert_eq!(seen(&scene, &aimed, &stage).unwrap().colors, 5);
+        // From the closed side the furniture is hidden.
+        let behind = CameraFlags {
+            aim: Aim::Orbit(OPEN_SIDE_ORBITS[6]),
+            ..flags
+        };
+        assert!(seen(&scene, &behind, &stage).unwrap().colors < 5);
+        // The same scene and flags, the same orbit.
+        assert_eq!(open_side(&scene, &flags, &stage), orbit);
+    }
+
+    #[test]
+    fn the_orbits_go_around_at_thirty_degrees() {
+        let yaws: Vec<f32> = OPEN_SIDE_ORBITS.iter().map(|o| o.yaw).collect();
+        assert_eq!(yaws, [0.0, 45.0, 90.0, 135.0, 180.0, 225.0, 270.0, 315.0]);
+        assert!(OPEN_SIDE_ORBITS
+            .iter()
+            .all(|o| o.pitch == 30.0 && o.distance.is_none()));
+    }
+}
