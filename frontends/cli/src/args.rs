@@ -47,8 +47,12 @@ pub struct Args {
     #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(i32).range(1..=voxtrace::MAX_COORD as i64))]
     pub size: i32,
 
-    /// Camera position X,Y,Z [default: N-10,N-10,N-10; with --vox, a view
-    /// of the model's front from a little above that frames its voxels].
+    /// Camera position X,Y,Z [default: N-10,N-10,N-10, or where that is
+    /// inside the ground the view that sees the most of the terrain; with
+    /// --vox and no camera flag, of eight views around the model from 30
+    /// degrees above, the one that sees the most of it, framed, at --fov
+    /// 30; with other camera flags, the model's front from a little
+    /// above].
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, conflicts_with_all = ["view", "orbit"])]
     pub position: Option<Vec3>,
 
@@ -57,7 +61,8 @@ pub struct Args {
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub lookat: Option<Vec3>,
 
-    /// Vertical field of view in degrees, in (0, 180).
+    /// Vertical field of view in degrees, in (0, 180) (a .vox model's
+    /// default view, without camera flags, is at 30).
     #[arg(long, default_value_t = voxtrace::DEFAULT_FOV)]
     pub fov: f32,
 

@@ -75,7 +75,9 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     let random_terrain = args.vox.is_none() && args.seed.is_none();
     farm::check_flags(&args.farm, random_terrain, args.frames)?;
     let subject = Subject::load(args.vox.as_deref(), args.seed, args.size)?;
-    let (file, flags) = (args.camera, args.camera_flags());
+    let explicit = Args::camera_given(matches);
+    let flags = view::measured_default(args.camera_flags(), explicit, &subject, args.max_memory);
+    let file = args.camera;
     let settings = camera_settings(file, &flags, &subject.stage(), subject.cameras())?;
     let range = frame_range(args.frames, args.frame_range, &args.farm)?;
     let cameras = turntable_cameras(settings, range, args.frames.unwrap_or(1))?;

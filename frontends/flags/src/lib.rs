@@ -8,14 +8,19 @@
 //!   `--lookat`, `--projection` and friends describe together
 //!   ([`resolve`]), and the flags that reproduce a camera ([`describe`]);
 //! - [`effects`]: the render options the effect flags ask for, a `.vox`
-//!   file's light folded in ([`render_options`]).
+//!   file's light folded in ([`render_options`]);
+//! - [`open_side`](mod@open_side): the default view chosen by measurement,
+//!   the orbit that sees the most of the scene ([`open_side()`],
+//!   [`MODEL_FOV`]).
 //!
 //! Every function takes plain values, not a frontend's parsed arguments.
 
 pub mod camera;
 pub mod effects;
 pub mod framing;
+pub mod open_side;
 
 pub use camera::{describe, resolve, Aim, CameraFlags, Stage};
 pub use effects::{render_options, Effects};
 pub use framing::{fit, framing, Boxes, FILL, MODEL_VIEW};
+pub use open_side::{open_side, seen, Seen, MODEL_FOV, OPEN_SIDE_ORBITS};

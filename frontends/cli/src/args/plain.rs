@@ -59,6 +59,28 @@ impl Args {
         }
     }
 
+    /// Whether any camera flag is on the command line (`--position`,
+    /// `--lookat`, `--fov`, `--up`, `--projection`, `--ortho-height`,
+    /// `--view`, `--orbit`, `--camera`): then the flags say where the
+    /// camera stands, and no default view is measured.
+    #[must_use]
+    pub fn camera_given(matches: &ArgMatches) -> bool {
+        const CAMERA: [&str; 9] = [
+            "position",
+            "lookat",
+            "fov",
+            "up",
+            "projection",
+            "ortho_height",
+            "view",
+            "orbit",
+            "camera",
+        ];
+        CAMERA
+            .iter()
+            .any(|id| matches.value_source(id) == Some(ValueSource::CommandLine))
+    }
+
     /// The effect flags as every frontend reads them
     /// ([`voxtrace_flags::render_options`]).
     #[must_use]

@@ -1,0 +1,160 @@
+//! The default view of a scene chosen by measurement: of a fixed set of
+//! orbits, the one whose small, cheap image sees the most of the scene
+//! (a room's open side, a car's flank), framed as any orbit is.
+
+use voxtrace::{Camera, Orbit, Scene};
+
+use crate::camera::{resolve, Aim, CameraFlags, Stage};
+
+/// The orbits the default view is chosen from, in the order that breaks
+/// ties: yaw 0 (the front, `+z`), 45, ... 315 degrees, each 30 degrees
+/// above the horizon.
+pub const OPEN_SIDE_ORBITS: [Orbit; 8] = {
+    let mut orbits = [Orbit {
+        yaw: 0.0,
+        pitch: 30.0,
+        distance: None,
+    }; 8];
+    let mut k = 0;
+    while k < 8 {
+        orbits[k].yaw = 45.0 * k as f32;
+        k += 1;
+    }
+    orbits
+};
+
+/// The vertical field of view, in degrees, of a model's measured default
+/// view: a longer lens than the terrain's 60 degrees, framed from farther
+/// back, so a small model does not look wide-angle.
+pub const MODEL_FOV: f32 = 30.0;
+
+/// The height in pixels of each measuring image (its width keeps the
+/// frame's shape, at most [`PROBE_MAX_WIDTH`]).
+const PROBE_HEIGHT: u32 = 54;
+/// The widest measuring image.
+const PROBE_MAX_WIDTH: u32 = 192;
+
+/// What one orbit sees: distinct palette indices, then distinct voxels
+/// (compared in that order, the larger the better).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub struct Seen {
+    /// Distinct palette indices (materials) hit.
+    pub colors: u32,
+    /// Distinct voxels hit.
+    pub voxels: u32,
+}
+
+/// What `scene` shows through the camera `flags` describe on `stage`,
+/// measured on a small image of the same shape (`None`: no camera).
+#[must_use]
+pub fn seen<S: Scene + ?Sized>(scene: &S, flags: &CameraFlags, stage: &Stage<'_>) -> Option<Seen> {
+    let height = PROBE_HEIGHT;
+    let aspect = flags.width as f32 / flags.height.max(1) as f32;
+    let width = ((height as f32 * aspect).round() as u32).clamp(1, PROBE_MAX_WIDTH);
+    let probe = CameraFlags {
+        width,
+        height,
+        ..*flags
+    };
+    let camera = Camera::new(resolve(&probe, stage).ok()?).ok()?;
+    let mut colors = [false; 256];
+    let mut voxels = Vec::with_capacity((width * height) as usize);
+    for j in 0..height {
+        for i in 0..width {
+            if let Some(hit) = scene.trace(&camera.get_ray(i, j)) {
+                colors[usize::from(hit.material)] = true;
+                voxels.push(hit.pos.to_array());
+            }
+        }
+    }
+    voxels.sort_unstable();
+    voxels.dedup();
+    Some(Seen {
+        colors: colors.iter().filter(|&&c| c).count() as u32,
+        voxels: voxels.len() as u32,
+    })
+}
+
+/// The orbit of [`OPEN_SIDE_ORBITS`] from which `scene` shows the most
+/// ([`Seen`]: the most distinct colors, then the most distinct voxels),
+/// with `flags`' image shape and lens; the first in their order on a tie,
+/// and the first when none sees anything. Deterministic: the same scene
+/// and flags give the same orbit.
+#[must_use]
+pub fn open_side<S: Scene + ?Sized>(scene: &S, flags: &CameraFlags, stage: &Stage<'_>) -> Orbit {
+    let mut best = (None, OPEN_SIDE_ORBITS[0]);
+    for orbit in OPEN_SIDE_ORBITS {
+        let aimed = CameraFlags {
+            aim: Aim::Orbit(orbit),
+            ..*flags
+        };
+        let score = seen(scene, &aimed, stage);
+        if score > best.0 {
+            best = (score, orbit);
+        }
+    }
+    best.1
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::framing::Boxes;
+    use voxtrace::glam::{IVec3, U8Vec3, Vec3};
+    use voxtrace::{FnSource, IAabb, OctreeScene, Palette};
+
+    /// A 16x8x16 room with a floor (1), walls (2) on its `-x`, `-z` and
+    /// `+z` sides, open toward `+x`, and three pieces of furniture (3, 4,
+    /// 5) in its middle, which only a view from the open side sees.
+    fn room() -> (impl Scene, IAabb) {
+        let palette = Palette::new(&[U8Vec3::splat(200); 5]);
+        let source = FnSource::new(palette, |p: IVec3| match (p.x, p.y, p.z) {
+            (_, 0, _) => 1,
+            (0, _, _) | (_, _, 0 | 15) => 2,
+            (7..=8, 1, 5..=6) => 3,
+            (7..=8, 1, 8..=9) => 4,
+            (7..=8, 1, 11..=12) => 5,
+            _ => 0,
+        });
+        let bounds = IAabb::new(IVec3::ZERO, IVec3::new(16, 8, 16));
+        (OctreeScene::build(&source, bounds).unwrap(), bounds)
+    }
+
+    #[test]
+    fn the_room_is_seen_from_its_open_side() {
+        let (scene, bounds) = room();
+        let stage = Stage {
+            boxes: Boxes::Bounds(bounds),
+            target: Vec3::splat(8.0),
+            default_position: None,
+        };
+        let flags = CameraFlags {
+            fov: MODEL_FOV,
+            ..CameraFlags::new(960, 540, Aim::Default)
+        };
+        let orbit = open_side(&scene, &flags, &stage);
+        assert!([45.0, 90.0, 135.0].contains(&orbit.yaw), "{orbit:?}");
+        let aimed = CameraFlags {
+            aim: Aim::Orbit(orbit),
+            ..flags
+        };
+        assert_eq!(seen(&scene, &aimed, &stage).unwrap().colors, 5);
+        // From the closed side the furniture is hidden.
+        let behind = CameraFlags {
+            aim: Aim::Orbit(OPEN_SIDE_ORBITS[6]),
+            ..flags
+        };
+        assert!(seen(&scene, &behind, &stage).unwrap().colors < 5);
+        // The same scene and flags, the same orbit.
+        assert_eq!(open_side(&scene, &flags, &stage), orbit);
+    }
+
+    #[test]
+    fn the_orbits_go_around_at_thirty_degrees() {
+        let yaws: Vec<f32> = OPEN_SIDE_ORBITS.iter().map(|o| o.yaw).collect();
+        assert_eq!(yaws, [0.0, 45.0, 90.0, 135.0, 180.0, 225.0, 270.0, 315.0]);
+        assert!(OPEN_SIDE_ORBITS
+            .iter()
+            .all(|o| o.pitch == 30.0 && o.distance.is_none()));
+    }
+}
