@@ -3,9 +3,11 @@
 //!
 //! `cargo run --release -p voxtrace-report -- speed [--quick] [--vs-binary PATH]`
 //! `cargo run --release -p voxtrace-report -- accuracy [--quick | --full]`
+//! `cargo run --release -p voxtrace-report -- embree-input [--size N]`
 
 mod accuracy;
 mod common_args;
+mod embree_input;
 mod geometric;
 mod image_error;
 mod measure;
@@ -42,6 +44,10 @@ enum Report {
     /// exact walk against a textbook float-accumulating one (time, pixels
     /// whose hit voxel differs) at the paper's sizes.
     Accuracy(accuracy::AccuracyArgs),
+    /// The terrain as a triangle mesh, the paper camera's rays and the
+    /// octree's hits, for `benches/embree/run.sh` (Intel Embree on the
+    /// same rays).
+    EmbreeInput(embree_input::EmbreeInputArgs),
 }
 
 fn main() -> ExitCode {
@@ -49,6 +55,7 @@ fn main() -> ExitCode {
     let result = match &cli.report {
         Report::Speed(args) => speed::run(args),
         Report::Accuracy(args) => accuracy::run(args),
+        Report::EmbreeInput(args) => embree_input::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -64,8 +64,37 @@ pub fn run(args: &SpeedArgs) -> Result<(), String> {
         markdown.push('\n');
         markdown.push_str(&speed_vs::table(rows, theirs, *threads, runs));
     }
+    markdown.push_str(&embree_tables());
     args.output
         .write("speed", &markdown, &charts(&measured, threads))
+}
+
+/// The tables `benches/embree/run.sh` left in `target/embree/SIZE/` (Intel
+/// Embree on the same terrain and rays, one thread), smallest size first,
+/// under one heading; nothing when the script has not run.
+fn embree_tables() -> String {
+    let Ok(dir) = std::fs::read_dir("target/embree") else {
+        return String::new();
+    };
+    let mut found: Vec<(i64, String)> = dir
+        .filter_map(Result::ok)
+        .filter_map(|entry| {
+            let size = entry.file_name().to_str()?.parse().ok()?;
+            let table = std::fs::read_to_string(entry.path().join("table.md")).ok()?;
+            Some((size, table))
+        })
+        .collect();
+    if found.is_empty() {
+        return String::new();
+    }
+    found.sort();
+    let mut text =
+        String::from("\n### Against Intel Embree, one thread (`benches/embree/run.sh SIZE`)\n");
+    for (_, table) in found {
+        text.push('\n');
+        text.push_str(&table);
+    }
+    text
 }
 
 fn measure_all(args: &SpeedArgs, runs: usize) -> Result<Vec<Measured>, String> {
