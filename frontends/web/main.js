@@ -22,13 +22,16 @@ if (params.has("backend")) inputs.backend.value = params.get("backend") === "den
 if (params.has("w")) canvas.width = Number(params.get("w"));
 if (params.has("h")) canvas.height = Number(params.get("h"));
 
-// The module's view codes: 1 an orbit, then the core's ViewPreset::ALL.
+// The module's view codes: 1 an orbit, then the core's ViewPreset::ALL;
+// 9 is the CLI's default view (a model's measured open side).
 const VIEWS = ["orbit", "front", "back", "left", "right", "top", "bottom", "iso"];
+const DEFAULT_VIEW = 9;
 // The ambient-occlusion toggle is the CLI's --ao with this many rays.
 const AO_RAYS = 8;
 // Orbit angles in degrees (the CLI's --orbit YAW,PITCH), a fixed position
-// when the URL gives one, and the wheel's zoom in steps of 1.25 times.
-const camera = { yaw: 45, pitch: 30, fixed: null, zoomSteps: 0 };
+// when the URL gives one, the wheel's zoom in steps of 1.25 times, and
+// whether the view is the CLI's default (a model just loaded).
+const camera = { yaw: 45, pitch: 30, fixed: null, zoomSteps: 0, measured: false };
 if (params.has("pos")) camera.fixed = params.get("pos").split(",").map(Number);
 // The model on show (its file name for the command), or null: the terrain.
 let model = null;
@@ -49,7 +52,8 @@ const quote = (s) => /^[\w.\/,+-]+$/.test(s) ? s : `'${s.replaceAll("'", "'\\''"
 
 function draw() {
   const zoom = Math.pow(1.25, camera.zoomSteps);
-  const view = camera.fixed ? 0 : VIEWS.indexOf(inputs.view.value) + 1;
+  const view = camera.fixed ? 0
+    : camera.measured ? DEFAULT_VIEW : VIEWS.indexOf(inputs.view.value) + 1;
   const [a, b, c] = camera.fixed ?? [camera.yaw, camera.pitch, 0];
   const effects = (inputs.shadows.checked ? 1 : 0) | (inputs.fog.checked ? 2 : 0);
   const ao = inputs.ao.checked ? AO_RAYS : 0;
@@ -98,7 +102,8 @@ function request() {
 }
 
 // A .vox file from the picker or a drop: copied into the module's memory
-// and parsed there; shown from the CLI's default model view.
+// and parsed there; shown from the CLI's default model view (measured by
+// the module: the side that shows the most of it).
 async function load(file) {
   const bytes = new Uint8Array(await file.arrayBuffer());
   const ptr = vt.vt_upload(bytes.length);
@@ -112,7 +117,8 @@ async function load(file) {
     return;
   }
   model = file.name;
-  Object.assign(camera, { yaw: 30, pitch: 20, fixed: null, zoomSteps: 0 });
+  Object.assign(camera, { fixed: null, zoomSteps: 0, measured: true });
+  inputs.view.value = "orbit";
   request();
 }
 
@@ -138,6 +144,12 @@ canvas.addEventListener("pointerdown", (e) => {
 });
 canvas.addEventListener("pointermove", (e) => {
   if (!drag) return;
+  if (camera.measured) {
+    // Orbit on from the default view's measured angles.
+    camera.yaw = vt.vt_orbit_yaw();
+    camera.pitch = vt.vt_orbit_pitch();
+    camera.measured = false;
+  }
   camera.fixed = null;
   inputs.view.value = "orbit";
   camera.yaw -= (e.clientX - drag.x) * 0.5;
@@ -160,10 +172,15 @@ for (const id of ["seed", "size"]) {
     if (terrainKey() === lastTerrain) return;
     lastTerrain = terrainKey();
     model = null;
+    camera.measured = false;
     request();
   });
 }
-inputs.view.addEventListener("change", () => { camera.fixed = null; request(); });
+inputs.view.addEventListener("change", () => {
+  camera.fixed = null;
+  camera.measured = false;
+  request();
+});
 for (const id of ["backend", "shadows", "ao", "fog"]) inputs[id].addEventListener("change", request);
 
 draw();

@@ -12,8 +12,10 @@
 //! - `vt_render(backend, view, a, b, c, zoom, effects, ao_rays, width,
 //!   height)`: builds the scene (kept while it and the backend stay the
 //!   same) and renders it; `view` and `a, b, c` place the camera
-//!   ([`camera::aim_from_code`]: a position, an orbit, or a preset such
-//!   as top or iso, framed as the CLI frames them), `zoom` magnifies it
+//!   ([`camera::aim_from_code`]: a position, an orbit, a preset such
+//!   as top or iso, or the CLI's default view, framed as the CLI frames
+//!   them; `vt_orbit_yaw()` / `vt_orbit_pitch()` give the orbit a render
+//!   used, for a drag to start from), `zoom` magnifies it
 //!   (the mouse wheel; 1 is the CLI's framing), `effects` holds the
 //!   [`options::SHADOWS`] and [`options::FOG`] bits and `ao_rays` is
 //!   `--ao` (0: off).
@@ -33,7 +35,7 @@ pub mod options;
 use std::sync::Mutex;
 
 use voxtrace::{
-    render, Camera, DenseScene, IAabb, Node, OctreeScene, RenderOptions, Scene, VoxModel,
+    render, Camera, DenseScene, IAabb, Node, OctreeScene, Orbit, RenderOptions, Scene, VoxModel,
     VoxelGenerator, WithMaterials, MAX_COORD,
 };
 
@@ -47,7 +49,7 @@ pub enum ErrorCode {
     /// Done.
     Ok = 0,
     /// `size` out of 1..=256, `backend` not 0 (dense) or 1 (octree), or
-    /// `view` not 0..=8.
+    /// `view` not 0..=9.
     BadScene = 1,
     /// The scene could not be built (out of memory).
     Build = 2,
@@ -109,13 +111,15 @@ enum Built {
 }
 
 /// The module's state: what to show, its built scene and the backend it
-/// was built for, the upload buffer, the frame and the message.
+/// was built for, the upload buffer, the frame, the message, and the orbit
+/// of the last orbiting render (where a drag starts from).
 struct State {
     subject: Option<Subject>,
     scene: Option<(u32, Built)>,
     upload: Vec<u8>,
     frame: Vec<u32>,
     message: String,
+    last_orbit: Orbit,
 }
 
 static STATE: Mutex<State> = Mutex::new(State {
@@ -124,6 +128,11 @@ static STATE: Mutex<State> = Mutex::new(State {
     upload: Vec::new(),
     frame: Vec::new(),
     message: String::new(),
+    last_orbit: Orbit {
+        yaw: 0.0,
+        pitch: 0.0,
+        distance: None,
+    },
 });
 
 fn state() -> std::sync::MutexGuard<'static, State> {
@@ -228,6 +237,7 @@ fn render_into(state: &mut State, f: &Frame) -> ErrorCode {
         scene,
         frame,
         message,
+        last_orbit,
         ..
     } = state;
     let Some(subject) = subject.as_ref() else {
@@ -248,8 +258,18 @@ fn render_into(state: &mut State, f: &Frame) -> ErrorCode {
             }
         }
     }
-    let Some(settings) = camera::settings(f.aim, f.zoom, f.width, f.height, &subject.stage())
-    else {
+    let stage = subject.stage();
+    let size = (f.width, f.height);
+    let is_model = subject.model().is_some();
+    let flags = match scene {
+        Some((_, Built::Dense(s))) => camera::flags(f.aim, size, is_model, s, &stage),
+        Some((_, Built::Octree(s))) => camera::flags(f.aim, size, is_model, s, &stage),
+        None => return ErrorCode::Build,
+    };
+    if let Aim::Orbit(orbit) = flags.aim {
+        *last_orbit = orbit;
+    }
+    let Some(settings) = camera::settings(&flags, f.zoom, &stage) else {
         *message = "no camera for this view (a zoom that is not a positive number?)".into();
         return ErrorCode::BadCamera;
     };
@@ -314,6 +334,19 @@ fn draw<S: Scene>(
         }
         None => render(scene, camera, options, frame).is_ok(),
     }
+}
+
+/// The yaw in degrees of the last render's orbit (an orbit's own, or the
+/// one a model's default view measured): where the page's drag starts.
+#[no_mangle]
+pub extern "C" fn vt_orbit_yaw() -> f32 {
+    state().last_orbit.yaw
+}
+
+/// The pitch in degrees of the last render's orbit (see [`vt_orbit_yaw`]).
+#[no_mangle]
+pub extern "C" fn vt_orbit_pitch() -> f32 {
+    state().last_orbit.pitch
 }
 
 /// Address of the frame's first pixel in linear memory.

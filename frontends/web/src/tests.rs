@@ -109,10 +109,10 @@ fn every_view_zoom_and_effect_of_the_sample_is_the_library_render_of_its_camera(
     // the picture. (A side view of the sample is a wall its shadows do not
     // reach.)
     let mut cameras = Vec::new();
-    // Orbit (the CLI's default model view), then every preset.
+    // An orbit, every preset, then the CLI's default model view.
     let views = [(1, [30.0, 20.0, 0.0])]
         .into_iter()
-        .chain((2..=8).map(|v| (v, [0.0; 3])));
+        .chain((2..=9).map(|v| (v, [0.0; 3])));
     for (view, abc) in views {
         for zoom in [1.0, 2.5] {
             let mut plain = None;
@@ -154,6 +154,40 @@ fn every_view_zoom_and_effect_of_the_sample_is_the_library_render_of_its_camera(
             }
         }
     }
+}
+
+#[test]
+fn a_model_opens_on_the_clis_measured_default_view_and_a_drag_starts_there() {
+    let _turn = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    assert_eq!(upload(SAMPLE), 0, "{}", message());
+    let model = VoxModel::from_bytes(SAMPLE).unwrap();
+    let octree = OctreeScene::build(&model, model.bounds()).unwrap();
+    let subject = Subject::Model(Box::new(model.clone()));
+    let stage = subject.stage();
+    // The CLI's measured default (`view.rs`): the open side at MODEL_FOV.
+    let lens = voxtrace_flags::CameraFlags {
+        fov: voxtrace_flags::MODEL_FOV,
+        ..voxtrace_flags::CameraFlags::new(W, H, Aim::Default)
+    };
+    let orbit = voxtrace_flags::open_side(&octree, &lens, &stage);
+    let want = voxtrace_flags::resolve(
+        &voxtrace_flags::CameraFlags {
+            aim: Aim::Orbit(orbit),
+            ..lens
+        },
+        &stage,
+    )
+    .unwrap();
+    let pixels = frame(1, 9, [0.0; 3], 1.0, 0, 0);
+    let scene = WithMaterials::new(&octree, model.materials(), model.emitters());
+    let mut expected = vec![0; (W * H) as usize];
+    let options = options::render_options(0, 0, model.bounds(), Some(&model), 1.0);
+    render(&scene, &Camera::new(want).unwrap(), &options, &mut expected).unwrap();
+    assert!(pixels == expected, "{}", message());
+    assert!(message().ends_with("--fov 30"), "{}", message());
+    assert_eq!((vt_orbit_yaw(), vt_orbit_pitch()), (orbit.yaw, orbit.pitch));
+    // Orbiting from there keeps the lens: the same orbit is the same frame.
+    assert!(frame(1, 1, [orbit.yaw, orbit.pitch, 0.0], 1.0, 0, 0) == expected);
 }
 
 #[test]
@@ -217,7 +251,7 @@ fn bad_input_is_an_error_code() {
         |backend, view, a, zoom, width| vt_render(backend, view, a, 2.0, 3.0, zoom, 0, 0, width, 8);
     assert_eq!(render(2, 0, 1.0, 1.0, 8), ErrorCode::BadScene as u32);
     assert!(message().contains("backend 2"), "{}", message());
-    assert_eq!(render(0, 9, 1.0, 1.0, 8), ErrorCode::BadScene as u32);
+    assert_eq!(render(0, 10, 1.0, 1.0, 8), ErrorCode::BadScene as u32);
     assert_eq!(render(0, 0, 0.0, 1.0, 8), 0);
     // On the target, zero size, a zoom that is not a positive number.
     assert_eq!(

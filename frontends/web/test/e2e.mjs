@@ -118,9 +118,9 @@ try {
       "--backend", scene.backend, "--position", scene.pos]);
   }
 
-  // A .vox model through the file picker: the CLI's default model view is
-  // --orbit 30,20 (its framing of the model's front from a little above).
-  const model = ["--vox", sample, "--orbit", "30,20"];
+  // A .vox model through the file picker opens on the CLI's default view
+  // (no camera flag: the measured side that shows the most of it).
+  const model = ["--vox", sample];
   await page.goto(`http://127.0.0.1:${port}/?w=${W}&h=${H}`);
   await page.waitForFunction(() => document.body.dataset.rendered === "1");
   await after(() => page.setInputFiles("#file", sample));
@@ -134,8 +134,7 @@ try {
   if (others.length === 0) console.log(`skipped the shared models: ${shared} is absent`);
   for (const file of others) {
     await after(() => page.setInputFiles("#file", file));
-    await compare(`${path.basename(file)} from the file picker`,
-      ["--vox", file, "--orbit", "30,20"]);
+    await compare(`${path.basename(file)} from the file picker`, ["--vox", file]);
   }
   if (others.length > 0) {
     await after(() => page.setInputFiles("#file", sample));
