@@ -108,7 +108,7 @@ pub fn denoise(pixels: &mut [u32], width: u32, height: u32, guides: &Guides) -> 
         sys::oidnSetFilterBool(filter.0, c"hdr".as_ptr(), false);
         sys::oidnSetFilterBool(filter.0, c"srgb".as_ptr(), false);
         sys::oidnSetFilterBool(filter.0, c"cleanAux".as_ptr(), true);
-        let quality = sys::OIDNQuality_OIDN_QUALITY_HIGH as i32;
+        let quality = sys::OIDNQuality_OIDN_QUALITY_HIGH;
         sys::oidnSetFilterInt(filter.0, c"quality".as_ptr(), quality);
         sys::oidnCommitFilter(filter.0);
         device.check()?;
