@@ -4,6 +4,12 @@
 
 use voxtrace::{Camera, Rect, RenderOptions, Scene};
 
+/// Bytes per pixel `--denoise` holds beside the frame: the albedo and
+/// normal guides and the color the filter reads and writes, three `f32`
+/// each. (Open Image Denoise's own working memory is not counted: it
+/// filters in tiles of bounded size.)
+pub const BYTES_PER_PIXEL: u128 = 3 * 3 * 4;
+
 /// Refuses `--denoise` (`asked`) in one line where it cannot run: in a
 /// build without the `denoise` feature (saying how to get one), and with
 /// `--tiles` (`tiled`), whose parts denoised one by one would show seams

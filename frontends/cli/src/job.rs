@@ -63,9 +63,9 @@ pub struct Totals {
 }
 
 impl Job<'_> {
-    /// Refuses a scene and frame that cannot fit in `max_memory` (`None`:
-    /// what the OS says is available) before anything is built, naming
-    /// the bytes.
+    /// Refuses a scene and frame (with `--denoise`'s images) that cannot
+    /// fit in `max_memory` (`None`: what the OS says is available) before
+    /// anything is built, naming the bytes.
     ///
     /// # Errors
     /// [`memory::Budget::check`]'s one line.
@@ -80,6 +80,13 @@ impl Job<'_> {
                 output::encoder_bytes(self.format, region.width, region.height, alpha)
             }
         };
+        // The denoiser's images live beside the encoder's buffers.
+        let denoise = if self.denoise {
+            u128::from(pixels) * denoise_flag::BYTES_PER_PIXEL
+        } else {
+            0
+        };
+        let encoder = encoder + denoise;
         let bounds = self.subject.bounds();
         let loaded = self.subject.loaded();
         memory::budget(self.backend, bounds, loaded, (pixels, encoder), max_memory)
