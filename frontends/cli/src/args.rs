@@ -186,6 +186,13 @@ pub struct Args {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8))]
     pub bounces: Option<u8>,
 
+    /// Denoise the finished frame with Intel Open Image Denoise, guided by
+    /// the first hit's albedo and normal (for path-traced frames at few
+    /// samples). Needs a build with `--features denoise` (docs/denoise.md);
+    /// not with --tiles, whose parts would show seams.
+    #[arg(long)]
+    pub denoise: bool,
+
     /// Worker threads for the build and the render, 1 to 256; 1 runs the
     /// scalar single-threaded path [default: all cores]. (More threads than
     /// that only reserve stacks: 65535 of them do not fit in a small

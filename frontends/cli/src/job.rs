@@ -10,6 +10,7 @@ use voxtrace_cli::atomic::AtomicFile;
 use voxtrace_cli::{on_threads, say, Backend};
 use voxtrace_flags::describe;
 
+use crate::denoise_flag;
 use crate::farm::{self, TileJob};
 use crate::memory;
 use crate::output::{self, Format};
@@ -41,6 +42,8 @@ pub struct Job<'a> {
     pub format: Format,
     /// The render-farm tile this run renders, written as a part.
     pub tile: Option<&'a TileJob>,
+    /// `--denoise`: every frame is denoised before it is written.
+    pub denoise: bool,
 }
 
 /// What a run cost, for `--stats`.
@@ -53,14 +56,16 @@ pub struct Totals {
     pub render: Duration,
     /// Wall time of the encoding and writing.
     pub encode: Duration,
+    /// Wall time of `--denoise`: the guides traced and the filter.
+    pub denoise: Duration,
     /// The built storage's bytes.
     pub storage_bytes: usize,
 }
 
 impl Job<'_> {
-    /// Refuses a scene and frame that cannot fit in `max_memory` (`None`:
-    /// what the OS says is available) before anything is built, naming
-    /// the bytes.
+    /// Refuses a scene and frame (with `--denoise`'s images) that cannot
+    /// fit in `max_memory` (`None`: what the OS says is available) before
+    /// anything is built, naming the bytes.
     ///
     /// # Errors
     /// [`memory::Budget::check`]'s one line.
@@ -75,6 +80,13 @@ impl Job<'_> {
                 output::encoder_bytes(self.format, region.width, region.height, alpha)
             }
         };
+        // The denoiser's images live beside the encoder's buffers.
+        let denoise = if self.denoise {
+            u128::from(pixels) * denoise_flag::BYTES_PER_PIXEL
+        } else {
+            0
+        };
+        let encoder = encoder + denoise;
         let bounds = self.subject.bounds();
         let loaded = self.subject.loaded();
         memory::budget(self.backend, bounds, loaded, (pixels, encoder), max_memory)
@@ -153,6 +165,7 @@ impl Job<'_> {
                 rays: RayStats::default(),
                 render: Duration::ZERO,
                 encode: Duration::ZERO,
+                denoise: Duration::ZERO,
                 storage_bytes: built.scene().storage_bytes(),
             };
             for (frame, path) in cameras.iter().zip(paths) {
@@ -161,13 +174,24 @@ impl Job<'_> {
                     built.render_with(materials, camera, region, self.options, threaded, &|rows| {
                         progress.advance(rows);
                     });
-                let rendered = match rendered {
+                let mut rendered = match rendered {
                     Ok(r) => r,
                     Err(e) => {
                         progress.finish();
                         return Err(e);
                     }
                 };
+                if self.denoise {
+                    let started = Instant::now();
+                    let (scene, pixels) = (built.scene(), &mut rendered.pixels);
+                    let denoised =
+                        denoise_flag::apply(scene, camera, self.options, region, threaded, pixels);
+                    if let Err(e) = denoised {
+                        progress.finish();
+                        return Err(e);
+                    }
+                    totals.denoise += started.elapsed();
+                }
                 let started = Instant::now();
                 if let Err(e) = self.write(first.take(), path, rendered.pixels) {
                     progress.finish();
@@ -197,6 +221,7 @@ impl Job<'_> {
             rays,
             render,
             encode,
+            denoise,
             storage_bytes,
         } = *totals;
         let bounds = self.subject.bounds();
@@ -206,6 +231,9 @@ impl Job<'_> {
         say!("build_ms: {:.3}", ms(build));
         say!("render_ms: {:.3}", ms(render));
         say!("encode_ms: {:.3}", ms(encode));
+        if self.denoise {
+            say!("denoise_ms: {:.3}", ms(denoise));
+        }
         say!("primary_rays: {}", rays.primary_rays);
         say!("shadow_rays: {}", rays.shadow_rays);
         say!("ao_rays: {}", rays.ao_rays);

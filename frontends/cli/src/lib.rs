@@ -4,15 +4,20 @@
 //! (`atomic`); and the render farm's parts: tile arithmetic and task
 //! indexes (`tiles`), the parts' metadata (`part`) and their assembly
 //! (`stitch`, which names a mismatch of settings by its flag:
-//! `settings_diff`).
+//! `settings_diff`); and `--denoise`'s albedo and normal images
+//! (`guides`) and Open Image Denoise filter (`denoise`, with the
+//! `denoise` feature).
 //!
 //! Errors are one-line messages meant for a user's terminal (`errors`:
 //! clap's errors on one line, control characters escaped).
 
 pub mod atomic;
+#[cfg(feature = "denoise")]
+pub mod denoise;
 pub mod errors;
 mod export;
 mod frames;
+pub mod guides;
 pub mod part;
 mod pipeline;
 mod settings_diff;

@@ -5,6 +5,7 @@
 //! problem.
 
 mod args;
+mod denoise_flag;
 mod effects;
 mod farm;
 mod job;
@@ -74,6 +75,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     let started = std::time::Instant::now();
     let random_terrain = args.vox.is_none() && args.seed.is_none();
     farm::check_flags(&args.farm, random_terrain, args.frames)?;
+    denoise_flag::check(args.denoise, args.farm.tiles.is_some())?;
     let subject = Subject::load(args.vox.as_deref(), args.seed, args.size)?;
     let explicit = Args::camera_given(matches);
     let flags = view::measured_default(args.camera_flags(), explicit, &subject, args.max_memory);
@@ -101,6 +103,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
         region,
         format,
         tile,
+        denoise: args.denoise,
     };
     job.check_memory(args.max_memory)?;
     let totals = job.render_all(&cameras, out, &paths)?;
