@@ -1,0 +1,183 @@
+//! Adaptive sampling of path-traced pixels: samples taken in rounds until
+//! the pixel's own estimate of its noise is below a threshold, or a
+//! maximum is reached.
+//!
+//! The decision to stop reads only the samples of the pixel it is about,
+//! and a pixel's samples depend only on the pixel and the sample index, so
+//! a pixel takes the same samples, and ends with the same value, on every
+//! thread count, crop, tile split and target. The state is a few floats on
+//! the stack: nothing allocates.
+
+use glam::Vec3;
+
+/// How adaptive sampling stops: after at least `min_samples` samples, at
+/// the end of the first round (of `min_samples` samples) where the
+/// standard error of the mean luminance, relative to the mean plus
+/// [`Adaptive::FLOOR`], is below `threshold`; after `max_samples` at most.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Adaptive {
+    /// Samples every pixel takes, and the size of each later round; at
+    /// least 1.
+    pub min_samples: u16,
+    /// Samples no pixel takes more of; at least `min_samples`.
+    pub max_samples: u16,
+    /// The relative standard error a pixel stops at; positive and finite.
+    pub threshold: f32,
+}
+
+impl Adaptive {
+    /// The default of path-traced frames without `--spp`: 8 to 256
+    /// samples, stopping at a relative error of 0.04.
+    pub const DEFAULT: Adaptive = Adaptive {
+        min_samples: 8,
+        max_samples: 256,
+        threshold: 0.04,
+    };
+
+    /// `--quality final`: 16 to 1024 samples, stopping at 0.015.
+    pub const FINAL: Adaptive = Adaptive {
+        min_samples: 16,
+        max_samples: 1024,
+        threshold: 0.015,
+    };
+
+    /// The luminance added to a pixel's mean before the error is taken
+    /// relative to it: dark pixels, whose relative error is large while
+    /// their absolute error is invisible, stop without the maximum (0.05
+    /// is 13 of 255).
+    pub const FLOOR: f32 = 0.05;
+
+    /// The settings with `threshold`, the default sample counts.
+    #[must_use]
+    pub const fn with_threshold(threshold: f32) -> Adaptive {
+        Adaptive {
+            threshold,
+            ..Adaptive::DEFAULT
+        }
+    }
+
+    /// Whether the settings can run: at least one sample, a maximum not
+    /// below the minimum, a positive finite threshold.
+    #[must_use]
+    pub fn is_usable(&self) -> bool {
+        self.min_samples >= 1
+            && self.max_samples >= self.min_samples
+            && self.threshold > 0.0
+            && self.threshold.is_finite()
+    }
+}
+
+/// Rec. 709 luminance of a linear radiance.
+#[cfg(feature = "path")]
+#[inline]
+fn luminance(radiance: Vec3) -> f32 {
+    radiance.dot(Vec3::new(0.2126, 0.7152, 0.0722))
+}
+
+/// One pixel's running tally of its samples' luminance, and the rule that
+/// stops it (the path tracer's).
+#[cfg(feature = "path")]
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Tally {
+    /// Samples counted.
+    count: u32,
+    /// Sum of their luminances.
+    sum: f32,
+    /// Sum of their squares.
+    sum_sq: f32,
+}
+
+#[cfg(feature = "path")]
+impl Tally {
+    /// Counts one sample's radiance.
+    #[inline]
+    pub(crate) fn add(&mut self, radiance: Vec3) {
+        let l = luminance(radiance);
+        self.count += 1;
+        self.sum += l;
+        self.sum_sq += l * l;
+    }
+
+    /// Whether the pixel is done under `settings`: at the maximum, or at
+    /// the end of a round with its relative standard error below the
+    /// threshold.
+    #[must_use]
+    pub(crate) fn done(&self, settings: &Adaptive) -> bool {
+        let n = self.count;
+        if n >= u32::from(settings.max_samples) {
+            return true;
+        }
+        let round = u32::from(settings.min_samples.max(1));
+        if n < round || n % round != 0 {
+            return false;
+        }
+        let n = n as f32;
+        let mean = self.sum / n;
+        // The unbiased sample variance; rounding may make it a little
+        // negative for equal samples.
+        let variance = ((self.sum_sq - self.sum * mean) / (n - 1.0).max(1.0)).max(0.0);
+        // stderr / (mean + floor) < threshold, squared (no square root, so
+        // every target decides alike): variance / n < (t (mean + floor))^2.
+        let bound = settings.threshold * (mean.max(0.0) + Adaptive::FLOOR);
+        variance < bound * bound * n
+    }
+}
+
+#[cfg(all(test, feature = "path"))]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn equal_samples_stop_at_the_first_round() {
+        let settings = Adaptive::DEFAULT;
+        let mut tally = Tally::default();
+        for i in 0..settings.min_samples {
+            assert!(!tally.done(&settings), "stopped after {i}");
+            tally.add(Vec3::splat(0.7));
+        }
+        assert!(tally.done(&settings));
+    }
+
+    #[test]
+    fn noisy_samples_run_to_the_maximum() {
+        let settings = Adaptive::DEFAULT;
+        let mut tally = Tally::default();
+        let mut taken = 0;
+        while !tally.done(&settings) {
+            // One sample in four is bright: a relative error near 1/sqrt(n).
+            let bright = taken % 4 == 0;
+            tally.add(Vec3::splat(if bright { 4.0 } else { 0.0 }));
+            taken += 1;
+        }
+        assert_eq!(taken, u32::from(settings.max_samples));
+    }
+
+    #[test]
+    fn the_error_falls_below_the_threshold_in_between() {
+        // Samples alternating 0.4 and 0.6: stderr 0.1 / sqrt(n), mean 0.5;
+        // below 0.04 * 0.55 from n = 21, so at the round of 24.
+        let settings = Adaptive::DEFAULT;
+        let mut tally = Tally::default();
+        let mut taken = 0;
+        while !tally.done(&settings) {
+            tally.add(Vec3::splat(if taken % 2 == 0 { 0.4 } else { 0.6 }));
+            taken += 1;
+        }
+        assert_eq!(taken, 24);
+    }
+
+    #[test]
+    fn only_usable_settings_are_usable() {
+        assert!(Adaptive::DEFAULT.is_usable() && Adaptive::FINAL.is_usable());
+        let bad = |f: fn(&mut Adaptive)| {
+            let mut a = Adaptive::DEFAULT;
+            f(&mut a);
+            a.is_usable()
+        };
+        assert!(!bad(|a| a.min_samples = 0));
+        assert!(!bad(|a| a.max_samples = 4));
+        assert!(!bad(|a| a.threshold = 0.0));
+        assert!(!bad(|a| a.threshold = f32::NAN));
+        assert!(!bad(|a| a.threshold = f32::INFINITY));
+    }
+}
