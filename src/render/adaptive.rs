@@ -12,8 +12,17 @@ use glam::Vec3;
 
 /// How adaptive sampling stops: after at least `min_samples` samples, at
 /// the end of the first round (of `min_samples` samples) where the
-/// standard error of the mean luminance, relative to the mean plus
+/// standard error of the mean luminance (of samples clamped to the
+/// displayable 0 to 1), relative to the square root of the mean plus
 /// [`Adaptive::FLOOR`], is below `threshold`; after `max_samples` at most.
+///
+/// Relative to the square root, between an absolute and a relative error
+/// (as Blender Cycles does): a bright pixel may keep more absolute noise
+/// than a dark one, but not in proportion to its brightness. Measured on
+/// study.vox at 480x270 against 256 uniform samples, a relative error
+/// spent its samples on dark pixels and stopped bright ones early, an RMSE
+/// well above uniform sampling's for the same time; this form was at or
+/// below it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Adaptive {
     /// Samples every pixel takes, and the size of each later round; at
@@ -26,25 +35,27 @@ pub struct Adaptive {
 }
 
 impl Adaptive {
-    /// The default of path-traced frames without `--spp`: 8 to 256
-    /// samples, stopping at a relative error of 0.04.
+    /// The default of path-traced frames without `--spp`: 16 to 256
+    /// samples, stopping at 0.05. (A minimum of 8 stopped too many pixels
+    /// whose rare bright paths its samples had all missed: on study.vox
+    /// the RMSE was 30% higher for 25% less time.)
     pub const DEFAULT: Adaptive = Adaptive {
-        min_samples: 8,
+        min_samples: 16,
         max_samples: 256,
-        threshold: 0.04,
+        threshold: 0.05,
     };
 
-    /// `--quality final`: 16 to 1024 samples, stopping at 0.015.
+    /// `--quality final`: 16 to 1024 samples, stopping at 0.025.
     pub const FINAL: Adaptive = Adaptive {
         min_samples: 16,
         max_samples: 1024,
-        threshold: 0.015,
+        threshold: 0.025,
     };
 
     /// The luminance added to a pixel's mean before the error is taken
-    /// relative to it: dark pixels, whose relative error is large while
-    /// their absolute error is invisible, stop without the maximum (0.05
-    /// is 13 of 255).
+    /// relative to its square root: black pixels, whose relative error
+    /// is large while their absolute error is invisible, stop without the
+    /// maximum (0.05 is 13 of 255).
     pub const FLOOR: f32 = 0.05;
 
     /// The settings with `threshold`, the default sample counts.
@@ -116,10 +127,10 @@ impl Tally {
         // The unbiased sample variance; rounding may make it a little
         // negative for equal samples.
         let variance = ((self.sum_sq - self.sum * mean) / (n - 1.0).max(1.0)).max(0.0);
-        // stderr / (mean + floor) < threshold, squared (no square root, so
-        // every target decides alike): variance / n < (t (mean + floor))^2.
-        let bound = settings.threshold * (mean.max(0.0) + Adaptive::FLOOR);
-        variance < bound * bound * n
+        // stderr / sqrt(mean + floor) < threshold, squared (no square root,
+        // so every target decides alike): variance / n < t^2 (mean + floor).
+        let t = settings.threshold;
+        variance < t * t * (mean.max(0.0) + Adaptive::FLOOR) * n
     }
 }
 
@@ -154,16 +165,17 @@ mod tests {
 
     #[test]
     fn the_error_falls_below_the_threshold_in_between() {
-        // Samples alternating 0.4 and 0.6: stderr 0.1 / sqrt(n), mean 0.5;
-        // below 0.04 * 0.55 from n = 21, so at the round of 24.
+        // Samples alternating 0.2 and 0.8: variance 0.09 n / (n - 1), mean
+        // 0.5; 0.09 / (n - 1) < 0.05^2 * 0.55 from n = 67, so at the round
+        // of 80.
         let settings = Adaptive::DEFAULT;
         let mut tally = Tally::default();
         let mut taken = 0;
         while !tally.done(&settings) {
-            tally.add(Vec3::splat(if taken % 2 == 0 { 0.4 } else { 0.6 }));
+            tally.add(Vec3::splat(if taken % 2 == 0 { 0.2 } else { 0.8 }));
             taken += 1;
         }
-        assert_eq!(taken, 24);
+        assert_eq!(taken, 80);
     }
 
     #[test]

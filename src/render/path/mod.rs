@@ -206,7 +206,9 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
             sum += counted;
             taken += 1;
             if let Some(settings) = &adaptive {
-                tally.add(counted);
+                // The noise that shows: a bright path past white changes
+                // nothing the pixel can display.
+                tally.add(counted.min(Vec3::ONE));
                 if tally.done(settings) {
                     break;
                 }

@@ -202,7 +202,7 @@ pub fn parse_threshold(s: &str) -> Result<f32, String> {
     match s.trim().parse::<f32>() {
         Ok(t) if t > 0.0 && t <= 1.0 => Ok(t),
         _ => Err(format!(
-            "'{s}' is not a noise threshold: a relative error in (0, 1], such as 0.04"
+            "'{s}' is not a noise threshold: a relative error in (0, 1], such as 0.05"
         )),
     }
 }
