@@ -184,7 +184,7 @@ pub struct Args {
     /// --quality final), in rounds of 16, stopping when the standard error
     /// of its mean luminance over the square root of the mean plus 0.05 is
     /// below X [default: 0.05, final 0.025; the default without --spp].
-    #[arg(long, value_name = "X", value_parser = parse_threshold, conflicts_with = "spp")]
+    #[arg(long, value_name = "X", value_parser = parse_threshold, allow_hyphen_values = true, conflicts_with = "spp")]
     pub noise_threshold: Option<f32>,
 
     /// Effects and samples in one word: preview is the default look;
