@@ -80,10 +80,7 @@ type Octree = OctreeScene<Vec<Node>, Vec<u8>>;
 fn with_clutter(check: impl FnOnce(&WithMaterials<'_, &Octree>)) {
     let (source, materials) = clutter();
     let bounds = IAabb::centered(12);
-    let lamps: Vec<IVec3> = bounds
-        .iter()
-        .filter(|&p| source.material(p) == 5)
-        .collect();
+    let lamps: Vec<IVec3> = bounds.iter().filter(|&p| source.material(p) == 5).collect();
     let octree = OctreeScene::build(&source, bounds).unwrap();
     check(&WithMaterials::new(&octree, &materials, &lamps));
 }
@@ -108,8 +105,12 @@ fn adaptive_frames_are_the_same_on_every_thread_count_crop_and_pixel() {
             assert_eq!(threaded, stats, "{threads} threads count other rays");
         }
         // Crops that cut tiles of 16 anywhere, down to one pixel.
-        for (x, y, width, height) in [(5, 9, 30, 17), (15, 15, 2, 2), (0, 29, 40, 1), (39, 0, 1, 30)]
-        {
+        for (x, y, width, height) in [
+            (5, 9, 30, 17),
+            (15, 15, 2, 2),
+            (0, 29, 40, 1),
+            (39, 0, 1, 30),
+        ] {
             let crop = Rect {
                 x,
                 y,
@@ -142,7 +143,10 @@ fn sky_pixels_stop_at_the_minimum_and_noisy_ones_sample_on() {
                 let (_, rays) = render_pixel(scene, &cam, &options, x, y);
                 let taken = rays.primary_rays;
                 // Rounds of min_samples, up to max_samples.
-                assert!(taken % 4 == 0 && (4..=32).contains(&taken), "{x},{y}: {taken}");
+                assert!(
+                    taken % 4 == 0 && (4..=32).contains(&taken),
+                    "{x},{y}: {taken}"
+                );
                 if rays.primary_hits == 0 {
                     // The sky's gradient across a pixel is far below the
                     // threshold.
@@ -155,7 +159,10 @@ fn sky_pixels_stop_at_the_minimum_and_noisy_ones_sample_on() {
             }
         }
         assert!(sky >= 40, "the top row at least is sky: {sky}");
-        assert!(more >= 100 && most >= 10, "{more} pixels sampled on, {most} to the maximum");
+        assert!(
+            more >= 100 && most >= 10,
+            "{more} pixels sampled on, {most} to the maximum"
+        );
     });
 }
 

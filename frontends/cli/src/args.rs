@@ -18,8 +18,8 @@ pub use farm::{StitchArgs, TileArgs};
 pub use plain::GivenFlags;
 pub use values::{
     parse_background, parse_bytes, parse_distance, parse_orbit, parse_rect, parse_sun,
-    parse_threshold, parse_vec3, BackgroundArg, FormatArg, OrbitArg, ProjectionArg, QualityArg, Sun,
-    ViewArg,
+    parse_threshold, parse_vec3, BackgroundArg, FormatArg, OrbitArg, ProjectionArg, QualityArg,
+    Sun, ViewArg,
 };
 
 /// Render the seeded Perlin terrain of the voxtrace paper, or a MagicaVoxel

@@ -79,7 +79,14 @@ fn path_traced_scenes_sample_adaptively_unless_spp_is_given() {
 
     let (_, stats) = render(
         "threshold",
-        &["--bounces", "1", "--noise-threshold", "0.5", "--quality", "final"],
+        &[
+            "--bounces",
+            "1",
+            "--noise-threshold",
+            "0.5",
+            "--quality",
+            "final",
+        ],
     );
     assert!(
         stat(&stats, "effects").contains("adaptive(16-1024 spp, threshold 0.5)"),
@@ -93,11 +100,17 @@ fn path_traced_scenes_sample_adaptively_unless_spp_is_given() {
 fn quality_final_on_a_face_shaded_model_is_shadows_ao_16_spp_16() {
     let (final_look, stats) = render("final", &["--quality", "final"]);
     assert_eq!(stat(&stats, "samples_per_pixel"), "16.00");
-    assert_eq!(stat(&stats, "effects"), "sun, shadows, ao(16 rays), spp(16)");
+    assert_eq!(
+        stat(&stats, "effects"),
+        "sun, shadows, ao(16 rays), spp(16)"
+    );
     let (spelled, _) = render("spelled", &["--shadows", "--ao", "16", "--spp", "16"]);
     assert!(final_look == spelled, "--quality final is not the flags");
     // Explicit flags win.
-    let (a, _) = render("final-spp", &["--quality", "final", "--spp", "2", "--ao", "3"]);
+    let (a, _) = render(
+        "final-spp",
+        &["--quality", "final", "--spp", "2", "--ao", "3"],
+    );
     let (b, _) = render("spelled-spp", &["--shadows", "--ao", "3", "--spp", "2"]);
     assert!(a == b, "explicit --spp and --ao do not win");
     // Preview is the default look, and a face-shaded scene ignores a

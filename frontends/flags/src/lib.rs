@@ -26,5 +26,5 @@ pub mod quality;
 pub use camera::{describe, resolve, Aim, CameraFlags, Stage};
 pub use effects::{render_options, Effects};
 pub use framing::{fit, framing, Boxes, FILL, MODEL_VIEW};
-pub use quality::{Quality, Sampling};
 pub use open_side::{open_side, seen, Seen, MODEL_FOV, OPEN_SIDE_ORBITS};
+pub use quality::{Quality, Sampling};
