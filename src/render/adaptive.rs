@@ -8,6 +8,7 @@
 //! thread count, crop, tile split and target. The state is a few floats on
 //! the stack: nothing allocates.
 
+#[cfg(feature = "path")]
 use glam::Vec3;
 
 /// How adaptive sampling stops: after at least `min_samples` samples, at

@@ -237,7 +237,11 @@ impl RenderOptions {
         options.sun = options.sun.filter(|&sun| usable_sun(sun));
         options.shadows &= options.sun.is_some();
         options.samples = options.samples.max(1);
-        options.adaptive = options.adaptive.filter(Adaptive::is_usable);
+        // (Only the path tracer reads it.)
+        #[cfg(feature = "path")]
+        {
+            options.adaptive = options.adaptive.filter(Adaptive::is_usable);
+        }
         options.occlusion = options
             .occlusion
             .filter(|ao| ao.rays > 0 && usable_distance(ao.distance));
