@@ -180,10 +180,11 @@ pub struct Args {
     pub spp: Option<u16>,
 
     /// Adaptive sampling of a path-traced scene (metal, glass, emitters or
-    /// --bounces): each pixel takes 16 to 256 samples (to 1024 with
-    /// --quality final), in rounds of 16, stopping when the standard error
-    /// of its mean luminance over the square root of the mean plus 0.05 is
-    /// below X [default: 0.05, final 0.025; the default without --spp].
+    /// --bounces): each pixel takes 16 to 64 samples in rounds of 16 (32 to
+    /// 256 in rounds of 32 with --quality final), stopping when the
+    /// standard error of its mean luminance over the square root of the
+    /// mean plus 0.05 is below X [default: 0.05, final 0.025; the default
+    /// without --spp].
     #[arg(long, value_name = "X", value_parser = parse_threshold, allow_hyphen_values = true, conflicts_with = "spp")]
     pub noise_threshold: Option<f32>,
 

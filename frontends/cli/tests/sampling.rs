@@ -65,11 +65,11 @@ fn spp_and_noise_threshold_conflict_in_one_line() {
 fn path_traced_scenes_sample_adaptively_unless_spp_is_given() {
     let (adaptive, stats) = render("adaptive-2", &["--bounces", "1", "--threads", "2"]);
     assert!(
-        stat(&stats, "effects").contains("adaptive(16-256 spp, threshold 0.05)"),
+        stat(&stats, "effects").contains("adaptive(16-64 spp, threshold 0.05)"),
         "{stats}"
     );
     let spp: f64 = stat(&stats, "samples_per_pixel").parse().unwrap();
-    assert!((16.0..=256.0).contains(&spp), "{spp}");
+    assert!((16.0..=64.0).contains(&spp), "{spp}");
     let (one_thread, _) = render("adaptive-1", &["--bounces", "1", "--threads", "1"]);
     assert!(adaptive == one_thread, "one thread and two differ");
 
@@ -89,11 +89,11 @@ fn path_traced_scenes_sample_adaptively_unless_spp_is_given() {
         ],
     );
     assert!(
-        stat(&stats, "effects").contains("adaptive(16-1024 spp, threshold 0.5)"),
+        stat(&stats, "effects").contains("adaptive(32-256 spp, threshold 0.5)"),
         "{stats}"
     );
     // Every pixel is done at its first round at so high a threshold.
-    assert_eq!(stat(&stats, "samples_per_pixel"), "16.00");
+    assert_eq!(stat(&stats, "samples_per_pixel"), "32.00");
 }
 
 #[test]
