@@ -98,6 +98,7 @@ pub use error::Error;
 pub use frustum::Frustum;
 pub use geom::{Face, IAabb, Ray, MAX_COORD};
 pub use material::{Material, MaterialKind, MaterialKinds, Materials, SceneMaterials};
+pub use render::adaptive::Adaptive;
 pub use render::camera::{Camera, CameraSettings, DEFAULT_FOV};
 pub use render::fit::Framer;
 pub use render::options::{

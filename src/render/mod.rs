@@ -9,13 +9,15 @@
 //!
 //! Scenes with metal, glass or emitters ([`plan`] decides, from the
 //! materials the scene's voxels use) get the path tracer (`path`, feature
-//! `path`) instead of face shading.
+//! `path`) instead of face shading; its pixels may sample until their own
+//! noise estimate is low enough ([`adaptive`]).
 //!
 //! One function, `render_pixel`, defines every pixel, so the scalar render,
 //! any crop, and the threaded render over the atomic [`framebuffer`]
 //! (feature `std`) with its parallel pixel iterator ([`parallel`], feature
 //! `rayon`) are byte-identical. The kernels allocate nothing.
 
+pub(crate) mod adaptive;
 pub(crate) mod camera;
 pub(crate) mod debug_view;
 pub(crate) mod fit;

@@ -3,6 +3,7 @@
 use glam::{U8Vec3, Vec3};
 
 use crate::error::Error;
+use crate::render::adaptive::Adaptive;
 
 /// The default sun: high, from +x and slightly from -z, so that tops are
 /// brightest and the two lit sides read apart (the seed paper's Fig. 1 look).
@@ -136,8 +137,14 @@ pub struct RenderOptions {
     /// Ambient occlusion, off when `None`.
     pub occlusion: Option<Occlusion>,
     /// Samples per pixel (anti-aliasing), at least 1; 1 samples the pixel's
-    /// center.
+    /// center. Every pixel of a face-shaded frame takes exactly this many,
+    /// and so does a path-traced frame's without `adaptive`.
     pub samples: u16,
+    /// Adaptive sampling of path-traced frames: each pixel takes samples
+    /// until its noise estimate is below a threshold (`samples` is then
+    /// unused). Face-shaded, flat and debug frames ignore it and keep their
+    /// pixels. Off when `None`.
+    pub adaptive: Option<Adaptive>,
     /// Distance fog, off when `None`.
     pub fog: Option<Fog>,
     /// What misses show.
@@ -165,6 +172,7 @@ impl RenderOptions {
             shadows: false,
             occlusion: None,
             samples: 1,
+            adaptive: None,
             fog: None,
             background: Background::Sky,
             lighting: Lighting::DEFAULT,
@@ -181,7 +189,8 @@ impl RenderOptions {
     }
 
     /// Checks every setting is usable: a finite non-zero sun, at least one
-    /// sample, at least one occlusion ray, positive finite distances.
+    /// sample, usable adaptive settings ([`Adaptive::is_usable`]), at least
+    /// one occlusion ray, positive finite distances.
     pub fn validate(&self) -> Result<(), Error> {
         let invalid = |reason| Err(Error::InvalidOptions { reason });
         if self.sun.is_some_and(|sun| !usable_sun(sun)) {
@@ -189,6 +198,11 @@ impl RenderOptions {
         }
         if self.samples == 0 {
             return invalid("samples per pixel must be at least 1");
+        }
+        if self.adaptive.is_some_and(|a| !a.is_usable()) {
+            return invalid(
+                "adaptive sampling needs 1 <= min samples <= max samples and a positive finite threshold",
+            );
         }
         if let Some(ao) = self.occlusion {
             if ao.rays == 0 {
@@ -223,6 +237,11 @@ impl RenderOptions {
         options.sun = options.sun.filter(|&sun| usable_sun(sun));
         options.shadows &= options.sun.is_some();
         options.samples = options.samples.max(1);
+        // (Only the path tracer reads it.)
+        #[cfg(feature = "path")]
+        {
+            options.adaptive = options.adaptive.filter(Adaptive::is_usable);
+        }
         options.occlusion = options
             .occlusion
             .filter(|ao| ao.rays > 0 && usable_distance(ao.distance));
@@ -251,6 +270,7 @@ impl RenderOptions {
                 shadows: false,
                 occlusion: None,
                 samples: 1,
+                adaptive: None,
                 fog: None,
                 background: self.background,
                 lighting: self.lighting,

@@ -32,7 +32,8 @@ pub enum Look {
 pub struct EffectPlan {
     /// The kernel.
     pub look: Look,
-    /// The effective options (what cannot run turned off).
+    /// The effective options (what cannot run turned off; adaptive
+    /// sampling only in [`Look::Path`]).
     pub options: RenderOptions,
     /// The non-diffuse material kinds the scene's used entries hold.
     pub kinds: MaterialKinds,
@@ -46,7 +47,7 @@ impl EffectPlan {
     /// off.
     #[must_use]
     pub fn new(options: &RenderOptions, materials: Option<SceneMaterials<'_>>) -> EffectPlan {
-        let options = options.sanitized();
+        let mut options = options.sanitized();
         let kinds = materials.map(|m| m.table.kinds()).unwrap_or_default();
         let look = if options.flat {
             Look::Flat
@@ -57,6 +58,10 @@ impl EffectPlan {
         } else {
             Look::Shaded
         };
+        // Only the path tracer samples adaptively.
+        if look != Look::Path {
+            options.adaptive = None;
+        }
         let lights = match (look, materials) {
             (Look::Path, Some(m)) if kinds.emissive => m.emitters.len(),
             _ => 0,
@@ -122,8 +127,16 @@ impl fmt::Display for EffectPlan {
                 }
             }
         }
-        if o.samples > 1 {
-            item(f, format_args!("spp({})", o.samples))?;
+        match o.adaptive {
+            Some(a) => item(
+                f,
+                format_args!(
+                    "adaptive({}-{} spp, threshold {})",
+                    a.min_samples, a.max_samples, a.threshold
+                ),
+            )?,
+            None if o.samples > 1 => item(f, format_args!("spp({})", o.samples))?,
+            None => {}
         }
         if o.fog.is_some() {
             item(f, format_args!("fog"))?;

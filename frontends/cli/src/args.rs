@@ -17,8 +17,9 @@ mod values;
 pub use farm::{StitchArgs, TileArgs};
 pub use plain::GivenFlags;
 pub use values::{
-    parse_background, parse_bytes, parse_distance, parse_orbit, parse_rect, parse_sun, parse_vec3,
-    BackgroundArg, FormatArg, OrbitArg, ProjectionArg, Sun, ViewArg,
+    parse_background, parse_bytes, parse_distance, parse_orbit, parse_rect, parse_sun,
+    parse_threshold, parse_vec3, BackgroundArg, FormatArg, OrbitArg, ProjectionArg, QualityArg,
+    Sun, ViewArg,
 };
 
 /// Render the seeded Perlin terrain of the voxtrace paper, or a MagicaVoxel
@@ -172,9 +173,27 @@ pub struct Args {
     #[arg(long, value_name = "VOXELS", default_value_t = voxtrace::Occlusion::DEFAULT_DISTANCE, value_parser = parse_distance)]
     pub ao_distance: f32,
 
-    /// Samples per pixel (anti-aliasing).
-    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=4096))]
-    pub spp: u16,
+    /// Samples per pixel, exactly N for every pixel (anti-aliasing; in a
+    /// path-traced scene, uniform sampling instead of adaptive) [default:
+    /// 1; a path-traced scene samples adaptively, see --noise-threshold].
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=4096))]
+    pub spp: Option<u16>,
+
+    /// Adaptive sampling of a path-traced scene (metal, glass, emitters or
+    /// --bounces): each pixel takes 16 to 64 samples in rounds of 16 (32 to
+    /// 256 in rounds of 32 with --quality final), stopping when the
+    /// standard error of its mean luminance over the square root of the
+    /// mean plus 0.05 is below X [default: 0.05, final 0.025; the default
+    /// without --spp].
+    #[arg(long, value_name = "X", value_parser = parse_threshold, allow_hyphen_values = true, conflicts_with = "spp")]
+    pub noise_threshold: Option<f32>,
+
+    /// Effects and samples in one word: preview is the default look;
+    /// final samples a path-traced scene adaptively to a lower noise
+    /// threshold, and renders other scenes with --shadows --ao 16 --spp 16.
+    /// Flags given explicitly win.
+    #[arg(long, value_enum, default_value_t = QualityArg::Preview)]
+    pub quality: QualityArg,
 
     /// Distance fog, all fog at 3 x --size voxels from the camera (with
     /// --vox, at twice the distance to the model's far side).

@@ -52,6 +52,8 @@ pub struct Totals {
     pub build: Duration,
     /// Rays traced over every frame, by kind.
     pub rays: RayStats,
+    /// Pixels rendered over every frame.
+    pub pixels: u64,
     /// Wall time of the renders alone.
     pub render: Duration,
     /// Wall time of the encoding and writing.
@@ -163,6 +165,7 @@ impl Job<'_> {
             let mut totals = Totals {
                 build,
                 rays: RayStats::default(),
+                pixels: 0,
                 render: Duration::ZERO,
                 encode: Duration::ZERO,
                 denoise: Duration::ZERO,
@@ -198,6 +201,7 @@ impl Job<'_> {
                     return Err(e);
                 }
                 totals.rays += rendered.rays;
+                totals.pixels += u64::from(region.width) * u64::from(region.height);
                 totals.render += rendered.elapsed;
                 totals.encode += started.elapsed();
             }
@@ -219,11 +223,14 @@ impl Job<'_> {
         let Totals {
             build,
             rays,
+            pixels,
             render,
             encode,
             denoise,
             storage_bytes,
         } = *totals;
+        // One camera ray per sample: what adaptive sampling spent.
+        let samples_per_pixel = rays.primary_rays as f64 / pixels.max(1) as f64;
         let bounds = self.subject.bounds();
         let ms = |d: Duration| d.as_secs_f64() * 1e3;
         let mrays = rays.primary_rays as f64 / render.as_secs_f64().max(1e-9) / 1e6;
@@ -240,6 +247,7 @@ impl Job<'_> {
         say!("reflection_rays: {}", rays.reflection_rays);
         say!("refraction_rays: {}", rays.refraction_rays);
         say!("light_rays: {}", rays.light_rays);
+        say!("samples_per_pixel: {samples_per_pixel:.2}");
         say!("effects: {plan}");
         say!("storage_bytes: {storage_bytes}");
         say!("mrays_per_s: {mrays:.3}");

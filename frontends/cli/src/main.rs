@@ -233,6 +233,11 @@ fn notes(
     let mut notes = ignored_effects(options);
     if plan.look == Look::Path {
         notes.extend(unused_in_path(options));
+    } else if given.noise_threshold {
+        notes.push(
+            "the scene is not path-traced: --noise-threshold changes nothing (--spp sets its samples)"
+                .to_string(),
+        );
     }
     notes.extend(ignored_flags(given, settings, format));
     notes

@@ -55,6 +55,7 @@ const FLAGS: &[(&str, &str)] = &[
     ("options.occlusion.distance", "--ao-distance"),
     ("options.occlusion", "--ao"),
     ("options.samples", "--spp"),
+    ("options.adaptive", "--noise-threshold, --quality or --spp"),
     ("options.fog", "--fog"),
     ("options.background", "--background"),
     ("options.lighting.bounces", "--bounces"),

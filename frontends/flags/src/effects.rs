@@ -3,8 +3,11 @@
 
 use voxtrace::glam::Vec3;
 use voxtrace::{
-    Background, Bounces, Fog, IAabb, Lighting, Occlusion, RenderOptions, VoxModel, DEFAULT_SUN,
+    Background, Bounces, EffectPlan, Fog, IAabb, Lighting, Look, Occlusion, RenderOptions,
+    SceneMaterials, VoxModel, DEFAULT_SUN,
 };
+
+use crate::quality::{self, Sampling};
 
 /// The effect flags.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -20,8 +23,8 @@ pub struct Effects {
     pub shadows: bool,
     /// `--ao N` with `--ao-distance`.
     pub occlusion: Option<Occlusion>,
-    /// `--spp`.
-    pub samples: u16,
+    /// `--spp`, `--noise-threshold` and `--quality`.
+    pub sampling: Sampling,
     /// `--fog`.
     pub fog: bool,
     /// `--background`.
@@ -41,7 +44,7 @@ impl Default for Effects {
             sun: None,
             shadows: options.shadows,
             occlusion: options.occlusion,
-            samples: options.samples,
+            sampling: Sampling::default(),
             fog: false,
             background: options.background,
             bounces: None,
@@ -78,7 +81,8 @@ fn lighting(effects: &Effects, model: Option<&VoxModel>) -> Lighting {
 /// (3 x `--size`); on a model, framed from afar, it is scaled to the view
 /// `view_distance` (the camera's distance to what it looks at): all fog at
 /// twice the distance to the model's far side, so the model shows its
-/// depth instead of the fog's color.
+/// depth instead of the fog's color. Samples as [`quality::apply`] says
+/// for the frame's look: adaptive in path-traced frames unless `--spp`.
 #[must_use]
 pub fn render_options(
     effects: &Effects,
@@ -88,13 +92,14 @@ pub fn render_options(
 ) -> RenderOptions {
     let side = bounds.size().max_element() as f32;
     let file_sun = model.and_then(|m| m.settings().sun).map(|s| s.direction);
-    RenderOptions {
+    let mut options = RenderOptions {
         flat: effects.flat,
         debug: effects.debug,
         sun: effects.sun.unwrap_or(Some(file_sun.unwrap_or(DEFAULT_SUN))),
         shadows: effects.shadows,
         occlusion: effects.occlusion,
-        samples: effects.samples,
+        samples: 1,
+        adaptive: None,
         fog: effects.fog.then_some(Fog {
             distance: match model {
                 // 3 x --size for the terrain: one and a half times the
@@ -105,5 +110,12 @@ pub fn render_options(
         }),
         background: effects.background,
         lighting: lighting(effects, model),
-    }
+    };
+    let materials = model.map(|m| SceneMaterials {
+        table: m.materials(),
+        emitters: m.emitters(),
+    });
+    let path_traced = EffectPlan::new(&options, materials).look == Look::Path;
+    quality::apply(&effects.sampling, path_traced, &mut options);
+    options
 }

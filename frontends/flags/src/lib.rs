@@ -9,6 +9,8 @@
 //!   ([`resolve`]), and the flags that reproduce a camera ([`describe`]);
 //! - [`effects`]: the render options the effect flags ask for, a `.vox`
 //!   file's light folded in ([`render_options`]);
+//! - [`quality`]: `--spp`, `--noise-threshold` and `--quality` as the
+//!   frame's samples, uniform or adaptive ([`Quality`], [`Sampling`]);
 //! - [`open_side`](mod@open_side): the default view chosen by measurement,
 //!   the orbit that sees the most of the scene ([`open_side()`],
 //!   [`MODEL_FOV`]).
@@ -19,8 +21,10 @@ pub mod camera;
 pub mod effects;
 pub mod framing;
 pub mod open_side;
+pub mod quality;
 
 pub use camera::{describe, resolve, Aim, CameraFlags, Stage};
 pub use effects::{render_options, Effects};
 pub use framing::{fit, framing, Boxes, FILL, MODEL_VIEW};
 pub use open_side::{open_side, seen, Seen, MODEL_FOV, OPEN_SIDE_ORBITS};
+pub use quality::{Quality, Sampling};

@@ -29,6 +29,7 @@ use glam::{IVec3, Vec3};
 
 use crate::geom::Ray;
 use crate::material::{MaterialKind, Materials};
+use crate::render::adaptive::{Adaptive, Tally};
 use crate::render::camera::Camera;
 use crate::render::options::{Background, Bounces, Fog, RenderOptions};
 use crate::render::rays::{around, primary, secondary};
@@ -84,8 +85,10 @@ pub(crate) struct PathSetup<'m> {
     pub(crate) sun_cos: f32,
     /// Bounce limits.
     pub(crate) bounces: Bounces,
-    /// Samples per pixel.
+    /// Samples per pixel, without `adaptive`.
     pub(crate) samples: u16,
+    /// Adaptive sampling: when to stop each pixel's samples.
+    pub(crate) adaptive: Option<Adaptive>,
     /// Distance fog on the first hit.
     pub(crate) fog: Option<Fog>,
     /// What a camera sample that hits nothing shows.
@@ -113,6 +116,7 @@ impl<'m> PathSetup<'m> {
             sun_cos: libm::cosf(light.sun_radius),
             bounces: light.bounces,
             samples: options.samples,
+            adaptive: options.adaptive,
             fog: options.fog,
             background: options.background,
         }
@@ -135,7 +139,10 @@ pub(crate) struct Path<'s, 'm, const GLASS: bool, const METAL: bool, const EMIT:
 
 impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS, METAL, EMIT> {
     /// Pixel `(x, y)`: the mean radiance of its samples, and the rays
-    /// traced (the kernel's `pixel`). Its camera rays walk with `memory`,
+    /// traced (the kernel's `pixel`). With adaptive sampling the pixel
+    /// takes the samples `0, 1, ...` of the uniform sequence until its own
+    /// tally says it is done, so it is the uniform render's pixel when that
+    /// takes as many samples. Its camera rays walk with `memory`,
     /// shared with the neighbouring pixels' camera rays; each later ray of
     /// a path begins from the hit before it (where a walk begins, never
     /// what it hits).
@@ -147,7 +154,16 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
         t_start: f32,
         memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats) {
-        let samples = u32::from(self.setup.samples.max(1));
+        let adaptive = self.setup.adaptive;
+        let samples = match adaptive {
+            Some(a) => u32::from(a.max_samples.max(1)),
+            None => u32::from(self.setup.samples.max(1)),
+        };
+        // A single uniform sample is the pixel's center; adaptive samples
+        // are all offset, as a uniform frame's of several.
+        let centered = samples == 1 && adaptive.is_none();
+        let mut tally = Tally::default();
+        let mut taken = 0;
         let mut sum = Vec3::ZERO;
         let mut stats = RayStats::default();
         // The background rules of the face-shaded look: a camera sample
@@ -160,7 +176,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
         let transparent = self.setup.background == Background::Transparent;
         for s in 0..samples {
             // The anti-aliasing offsets of the face-shaded look.
-            let ray = if samples == 1 {
+            let ray = if centered {
                 self.camera.get_ray(x, y)
             } else {
                 let offset = r2(s, pixel_key(x, y, 0));
@@ -182,13 +198,25 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
                 _ => radiance,
             };
             // A NaN from degenerate geometry is dropped, never averaged in.
-            if radiance.is_finite() {
-                sum += radiance.clamp(Vec3::ZERO, Vec3::splat(MAX_RADIANCE));
+            let counted = if radiance.is_finite() {
+                radiance.clamp(Vec3::ZERO, Vec3::splat(MAX_RADIANCE))
+            } else {
+                Vec3::ZERO
+            };
+            sum += counted;
+            taken += 1;
+            if let Some(settings) = &adaptive {
+                // The noise that shows: a bright path past white changes
+                // nothing the pixel can display.
+                tally.add(counted.min(Vec3::ONE));
+                if tally.done(settings) {
+                    break;
+                }
             }
         }
         let mean_of = |n: u32| to_u8(sum * (255.0 / n as f32));
         let hits = stats.primary_hits as u32;
-        (pack_mean(samples, hits, transparent, mean_of), stats)
+        (pack_mean(taken, hits, transparent, mean_of), stats)
     }
 }
 

@@ -6,7 +6,7 @@
 use clap::parser::ValueSource;
 use clap::ArgMatches;
 use voxtrace::{Background, Occlusion};
-use voxtrace_flags::{Aim, CameraFlags, Effects};
+use voxtrace_flags::{Aim, CameraFlags, Effects, Sampling};
 
 use super::{Args, BackgroundArg, OrbitArg, ProjectionArg};
 
@@ -33,6 +33,8 @@ pub struct GivenFlags {
     pub perspective: bool,
     /// `--background transparent`.
     pub transparent: bool,
+    /// `--noise-threshold`.
+    pub noise_threshold: bool,
 }
 
 impl Args {
@@ -95,7 +97,11 @@ impl Args {
                 rays,
                 distance: self.ao_distance,
             }),
-            samples: self.spp,
+            sampling: Sampling {
+                spp: self.spp,
+                noise_threshold: self.noise_threshold,
+                quality: self.quality.quality(),
+            },
             fog: self.fog,
             background,
             bounces: self.bounces,
@@ -117,6 +123,7 @@ impl Args {
             fov: given("fov"),
             perspective: self.projection == ProjectionArg::Perspective && given("projection"),
             transparent: self.background.0 == Background::Transparent,
+            noise_threshold: self.noise_threshold.is_some(),
         }
     }
 }

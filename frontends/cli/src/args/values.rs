@@ -6,6 +6,7 @@
 use clap::ValueEnum;
 use voxtrace::glam::{U8Vec3, Vec3};
 use voxtrace::{Background, Orbit, Rect, ViewPreset};
+use voxtrace_flags::Quality;
 
 /// `--projection`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -14,6 +15,26 @@ pub enum ProjectionArg {
     Perspective,
     /// Parallel rays, an image --ortho-height voxels tall.
     Orthographic,
+}
+
+/// `--quality`: the shared crate's [`Quality`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum QualityArg {
+    /// The default look, fast.
+    Preview,
+    /// Converged path tracing, or shadows, occlusion and 16 samples.
+    Final,
+}
+
+impl QualityArg {
+    /// The shared crate's value.
+    #[must_use]
+    pub fn quality(self) -> Quality {
+        match self {
+            QualityArg::Preview => Quality::Preview,
+            QualityArg::Final => Quality::Final,
+        }
+    }
 }
 
 /// `--view`: the core's presets.
@@ -172,6 +193,17 @@ pub fn parse_distance(s: &str) -> Result<f32, String> {
     match s.trim().parse::<f32>() {
         Ok(d) if d > 0.0 && d.is_finite() => Ok(d),
         _ => Err(format!("'{s}' is not a positive finite distance")),
+    }
+}
+
+/// `--noise-threshold`: a relative error, positive, finite and at most 1
+/// (above that every pixel would stop at its first round).
+pub fn parse_threshold(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(t) if t > 0.0 && t <= 1.0 => Ok(t),
+        _ => Err(format!(
+            "'{s}' is not a noise threshold: a relative error in (0, 1], such as 0.05"
+        )),
     }
 }
 

@@ -1,0 +1,131 @@
+//! The sampling flags: `--spp`, `--noise-threshold` and `--quality`. A
+//! path-traced scene (here `--bounces`, on the repository's own
+//! docs/terrain.vox) samples adaptively unless `--spp` is given, the same
+//! bytes on one thread and two; `--quality final` on a face-shaded scene
+//! is `--shadows --ao 16 --spp 16`, explicit flags winning; the conflicts
+//! and bad values are one-line refusals.
+
+mod common;
+
+use std::path::PathBuf;
+
+use common::run::{assert_refused, scratch_in, stderr, voxtrace};
+
+/// The repository's terrain model, all diffuse.
+fn terrain_vox() -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../docs/terrain.vox")
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// The bytes and `--stats` lines of a 64x36 render of the terrain model
+/// with `flags`.
+fn render(name: &str, flags: &[&str]) -> (Vec<u8>, String) {
+    let out = scratch_in("sampling", &format!("{name}.png"));
+    let vox = terrain_vox();
+    let mut args = vec![
+        "--vox",
+        &vox,
+        "--width",
+        "64",
+        "--height",
+        "36",
+        "--stats",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(flags);
+    let run = voxtrace(&args);
+    assert!(run.status.success(), "{flags:?}: {}", stderr(&run));
+    (std::fs::read(&out).unwrap(), stderr(&run))
+}
+
+/// The value of `key: value` in `--stats` lines.
+fn stat<'a>(stats: &'a str, key: &str) -> &'a str {
+    stats
+        .lines()
+        .find_map(|line| line.strip_prefix(key)?.strip_prefix(": "))
+        .unwrap_or_else(|| panic!("no {key} in {stats}"))
+}
+
+#[test]
+fn spp_and_noise_threshold_conflict_in_one_line() {
+    let out = voxtrace(&["--spp", "4", "--noise-threshold", "0.1", "--out", "x.png"]);
+    assert_refused(&out, &["--spp", "--noise-threshold"]);
+    for bad in ["0", "-0.1", "1.5", "nan", "inf", "much"] {
+        let out = voxtrace(&["--noise-threshold", bad, "--out", "x.png"]);
+        assert_refused(&out, &["--noise-threshold", "is not a noise threshold"]);
+    }
+    let out = voxtrace(&["--quality", "best", "--out", "x.png"]);
+    assert_refused(&out, &["--quality", "preview", "final"]);
+}
+
+#[test]
+fn path_traced_scenes_sample_adaptively_unless_spp_is_given() {
+    let (adaptive, stats) = render("adaptive-2", &["--bounces", "1", "--threads", "2"]);
+    assert!(
+        stat(&stats, "effects").contains("adaptive(16-64 spp, threshold 0.05)"),
+        "{stats}"
+    );
+    let spp: f64 = stat(&stats, "samples_per_pixel").parse().unwrap();
+    assert!((16.0..=64.0).contains(&spp), "{spp}");
+    let (one_thread, _) = render("adaptive-1", &["--bounces", "1", "--threads", "1"]);
+    assert!(adaptive == one_thread, "one thread and two differ");
+
+    let (_, stats) = render("uniform", &["--bounces", "1", "--spp", "3"]);
+    assert_eq!(stat(&stats, "samples_per_pixel"), "3.00");
+    assert!(stat(&stats, "effects").contains("spp(3)"), "{stats}");
+
+    let (_, stats) = render(
+        "threshold",
+        &[
+            "--bounces",
+            "1",
+            "--noise-threshold",
+            "0.5",
+            "--quality",
+            "final",
+        ],
+    );
+    assert!(
+        stat(&stats, "effects").contains("adaptive(32-256 spp, threshold 0.5)"),
+        "{stats}"
+    );
+    // Every pixel is done at its first round at so high a threshold.
+    assert_eq!(stat(&stats, "samples_per_pixel"), "32.00");
+}
+
+#[test]
+fn quality_final_on_a_face_shaded_model_is_shadows_ao_16_spp_16() {
+    let (final_look, stats) = render("final", &["--quality", "final"]);
+    assert_eq!(stat(&stats, "samples_per_pixel"), "16.00");
+    assert_eq!(
+        stat(&stats, "effects"),
+        "sun, shadows, ao(16 rays), spp(16)"
+    );
+    let (spelled, _) = render("spelled", &["--shadows", "--ao", "16", "--spp", "16"]);
+    assert!(final_look == spelled, "--quality final is not the flags");
+    // Explicit flags win.
+    let (a, _) = render(
+        "final-spp",
+        &["--quality", "final", "--spp", "2", "--ao", "3"],
+    );
+    let (b, _) = render("spelled-spp", &["--shadows", "--ao", "3", "--spp", "2"]);
+    assert!(a == b, "explicit --spp and --ao do not win");
+    // Preview is the default look, and a face-shaded scene ignores a
+    // noise threshold, saying so.
+    let (preview, _) = render("preview", &["--quality", "preview"]);
+    let (default, stats) = render("default", &["--noise-threshold", "0.1"]);
+    assert!(preview == default, "preview is not the default look");
+    assert_eq!(stat(&stats, "samples_per_pixel"), "1.00");
+    assert!(
+        stats.contains("not path-traced: --noise-threshold changes nothing"),
+        "{stats}"
+    );
+    // --flat draws no effects: final adds none, and no note about flags
+    // never given.
+    let (_, stats) = render("flat", &["--quality", "final", "--flat"]);
+    assert_eq!(stat(&stats, "effects"), "flat");
+    assert!(!stats.contains("ignoring"), "{stats}");
+}
