@@ -79,30 +79,28 @@ pub fn render_guides(
     let mut normal = vec![0.0; len];
     let step = 1.0 / GRID as f32;
     // Pixel (x, y)'s rays: the beauty's own center ray for one sample,
-    // else the grid's.
-    let rays = |x: u32, y: u32| -> Vec<Ray> {
-        if options.samples <= 1 {
-            return vec![camera.get_ray(x, y)];
+    // else the grid's (adaptive sampling takes several too).
+    let centered = options.samples <= 1 && options.adaptive.is_none();
+    let count = if centered { 1 } else { GRID * GRID };
+    let ray = |x: u32, y: u32, k: u32| -> Ray {
+        if centered {
+            return camera.get_ray(x, y);
         }
-        (0..GRID * GRID)
-            .map(|k| {
-                let dx = (k % GRID) as f32 * step + step / 2.0;
-                let dy = (k / GRID) as f32 * step + step / 2.0;
-                camera.get_ray_at(x as f32 + dx, y as f32 + dy)
-            })
-            .collect()
+        let dx = (k % GRID) as f32 * step + step / 2.0;
+        let dy = (k / GRID) as f32 * step + step / 2.0;
+        camera.get_ray_at(x as f32 + dx, y as f32 + dy)
     };
     let row = |(j, (albedo_row, normal_row)): (usize, (&mut [f32], &mut [f32]))| {
         let y = region.y + j as u32;
         for i in 0..width {
-            let rays = rays(region.x + i as u32, y);
+            let x = region.x + i as u32;
             let (mut a, mut n) = (Vec3::ZERO, Vec3::ZERO);
-            for ray in &rays {
-                let (ha, hn) = first_hit(scene, options, ray);
+            for k in 0..count {
+                let (ha, hn) = first_hit(scene, options, &ray(x, y, k));
                 a += ha;
                 n += hn;
             }
-            let scale = 1.0 / rays.len() as f32;
+            let scale = 1.0 / count as f32;
             albedo_row[3 * i..3 * i + 3].copy_from_slice(&(a * scale).to_array());
             normal_row[3 * i..3 * i + 3].copy_from_slice(&(n * scale).to_array());
         }

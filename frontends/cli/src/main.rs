@@ -93,6 +93,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     let files = args.frames.map(|_| range);
     let paths = output_paths(out, format, tile.is_some(), &args.out, files)?;
     let mut notes = notes(&options, &plan, &args.given(matches), &settings, format);
+    notes.extend(low_samples_hint(&options, &plan, args.denoise));
     notes.extend(camera_inside_note(&cameras, &subject, args.camera));
     let (backend, threads, tile) = (args.backend, args.threads, tile.as_ref());
     let job = Job {
@@ -241,6 +242,23 @@ fn notes(
     }
     notes.extend(ignored_flags(given, settings, format));
     notes
+}
+
+/// Fewer fixed samples than this leave a path-traced frame visibly grainy.
+const GRAINY_BELOW: u16 = 16;
+
+/// A hint when a path-traced frame takes a fixed, low `--spp` and is not
+/// denoised: it will be grainy, and two flags help.
+fn low_samples_hint(options: &RenderOptions, plan: &EffectPlan, denoise: bool) -> Option<String> {
+    // Without --spp a path-traced frame samples adaptively.
+    let fixed = options.adaptive.is_none();
+    (plan.look == Look::Path && fixed && options.samples < GRAINY_BELOW && !denoise).then(|| {
+        format!(
+            "{} samples per pixel leave a path-traced frame grainy: without --spp it samples \
+             until the noise is low (--noise-threshold), or --denoise cleans it",
+            options.samples
+        )
+    })
 }
 
 /// A note when a frame's camera starts inside a solid voxel (its rays see

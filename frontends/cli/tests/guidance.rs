@@ -143,3 +143,49 @@ fn a_render_on_a_terminal_says_where_it_went() {
     assert!(quiet.status.success());
     assert_eq!(stderr(&quiet), "", "a script's stderr stays empty");
 }
+
+#[test]
+fn a_path_traced_frame_at_few_fixed_samples_hints_once_at_what_helps() {
+    let out = scratch("grainy.png");
+    let out = out.to_str().unwrap();
+    // `--bounces` path-traces the all-diffuse terrain.
+    let base = [
+        "--size",
+        "12",
+        "--seed",
+        "1",
+        "--width",
+        "24",
+        "--height",
+        "16",
+        "--bounces",
+        "1",
+    ];
+    let hint = "samples per pixel leave a path-traced frame grainy";
+    let run = |extra: &[&str]| {
+        let args: Vec<&str> = base
+            .iter()
+            .chain(extra)
+            .chain(&["--out", out])
+            .copied()
+            .collect();
+        let result = voxtrace(&args);
+        assert!(result.status.success(), "{}", stderr(&result));
+        stderr(&result)
+    };
+    let grainy = run(&["--spp", "2"]);
+    assert_eq!(grainy.matches(hint).count(), 1, "{grainy}");
+    assert!(grainy.contains("2 samples per pixel"), "{grainy}");
+    assert!(grainy.contains("--noise-threshold") && grainy.contains("--denoise"));
+    // Enough samples, adaptive sampling, or a look that is not path-traced:
+    // no hint.
+    for extra in [&["--spp", "16"][..], &[], &["--noise-threshold", "0.1"]] {
+        let said = run(extra);
+        assert!(!said.contains(hint), "{extra:?}: {said}");
+    }
+    let shaded = voxtrace(&[
+        "--size", "12", "--seed", "1", "--width", "24", "--height", "16", "--spp", "2", "--out",
+        out,
+    ]);
+    assert!(!stderr(&shaded).contains(hint), "{}", stderr(&shaded));
+}
