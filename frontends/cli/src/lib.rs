@@ -20,6 +20,7 @@ mod frames;
 pub mod guides;
 pub mod part;
 mod pipeline;
+pub mod room;
 mod settings_diff;
 pub mod stitch;
 pub mod tiles;

@@ -10,11 +10,11 @@
 
 mod common;
 
-use common::room;
 use common::run::{assert_refused, fresh_dir, stderr, voxtrace};
 use voxtrace::{unpack, IAabb, Rect, SceneMaterials};
 use voxtrace_cli::denoise::denoise;
 use voxtrace_cli::guides::render_guides;
+use voxtrace_cli::room;
 use voxtrace_cli::{Backend, BuiltScene};
 
 /// Root mean square difference over the color channels, in 0..=255 (the

@@ -7,10 +7,10 @@
 
 mod common;
 
-use common::room;
 use voxtrace::glam::{U8Vec3, Vec3};
 use voxtrace::{unpack, Background, IAabb, Rect, RenderOptions};
 use voxtrace_cli::guides::{render_guides, Guides};
+use voxtrace_cli::room;
 use voxtrace_cli::{Backend, BuiltScene};
 
 const WIDTH: u32 = 64;

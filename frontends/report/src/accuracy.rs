@@ -2,7 +2,9 @@
 //! converged reference of one scene, then each setting along each accuracy
 //! axis, and records time, rays and error (RMSE, PSNR) against the
 //! reference. Then the path-traced material scenes over samples per pixel x
-//! bounces ([`crate::path_accuracy`]), and the geometric section
+//! bounces ([`crate::path_accuracy`]), what a user gets by default
+//! from adaptive sampling and the denoiser ([`crate::convergence`]), and
+//! the geometric section
 //! ([`crate::geometric`]): the exact walk against a textbook
 //! float-accumulating one, time and pixels differing.
 
@@ -19,8 +21,8 @@ use crate::common_args::Output;
 use crate::geometric;
 use crate::image_error::{psnr, rmse};
 use crate::measure::{count_of, cpu_name, format_ms, median_of};
-use crate::path_accuracy;
 use crate::plot::{Chart, Line, Series};
+use crate::{convergence, path_accuracy};
 use plotters::chart::SeriesLabelPosition;
 
 /// Options of the `accuracy` report.
@@ -183,6 +185,14 @@ pub fn run(args: &AccuracyArgs) -> Result<(), String> {
     let materials = on_threads(args.output.threads, || {
         path_accuracy::measure_all(grid, runs)
     })?;
+    let plan = if args.quick {
+        &convergence::QUICK
+    } else {
+        &convergence::PLAN
+    };
+    let converged = on_threads(args.output.threads, || {
+        convergence::measure_all(plan, runs, &args.output.out_dir)
+    })?;
 
     let command = format!(
         "cargo run --release -p voxtrace-report -- accuracy{}",
@@ -196,6 +206,7 @@ pub fn run(args: &AccuracyArgs) -> Result<(), String> {
     );
     let mut md = table(&rows, &command, width, height, threads, runs, reference_ms);
     md.push_str(&path_accuracy::section(&materials, grid, runs));
+    md.push_str(&convergence::section(&converged, plan, runs));
     md.push_str(&geometric::section(
         &geometric_rows,
         SEED,

@@ -7,6 +7,7 @@
 
 mod accuracy;
 mod common_args;
+mod convergence;
 mod embree_input;
 mod geometric;
 mod image_error;

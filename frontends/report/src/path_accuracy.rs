@@ -11,12 +11,11 @@ use std::path::Path;
 use std::time::Instant;
 
 use plotters::chart::SeriesLabelPosition;
-use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
-    render_parallel, Bounces, Camera, CameraSettings, FnSource, Framebuffer, IAabb, Lighting,
-    Material, Materials, OctreeScene, Orbit, Palette, RayStats, Rect, RenderOptions, Scene,
-    VoxModel, WithMaterials,
+    render_parallel, Bounces, Camera, CameraSettings, Framebuffer, IAabb, Lighting, OctreeScene,
+    Orbit, RayStats, Rect, RenderOptions, Scene, VoxModel, WithMaterials,
 };
+use voxtrace_cli::room;
 use voxtrace_flags::{fit, Boxes};
 
 use crate::image_error::{psnr, rmse};
@@ -72,46 +71,8 @@ pub struct Measured {
     rows: Vec<Row>,
 }
 
-/// Palette indices of the room.
-const WHITE: u8 = 1;
-const RED: u8 = 2;
-const GREEN: u8 = 3;
-const GLASS: u8 = 4;
-const MIRROR: u8 = 5;
-const LAMP: u8 = 6;
-const BLOCK: u8 = 7;
-
-/// The room: white floor, ceiling and back wall, a red and a green side
-/// wall, open at the front (toward +z) to a dim uniform sky; a lamp in
-/// the ceiling, a mirror on the right wall, a glass pane in front of a
-/// yellow block.
-fn room_voxel(p: IVec3) -> u8 {
-    let inside = |lo: i32, hi: i32, v: i32| (lo..=hi).contains(&v);
-    let (x, y, z) = (p.x, p.y, p.z);
-    if !(inside(-10, 10, x) && inside(-8, 8, y) && inside(-10, 10, z)) {
-        return 0;
-    }
-    if y == 8 && inside(-2, 1, x) && inside(-3, 0, z) {
-        LAMP
-    } else if x == 9 && inside(-6, 4, y) && inside(-8, -2, z) {
-        MIRROR
-    } else if z == 2 && inside(-7, -1, x) && inside(-7, -1, y) {
-        GLASS
-    } else if inside(-6, -3, x) && inside(-7, -4, y) && inside(-4, -1, z) {
-        BLOCK
-    } else if x == -10 {
-        RED
-    } else if x == 10 {
-        GREEN
-    } else if y == -8 || y == 8 || z == -10 {
-        WHITE
-    } else {
-        0
-    }
-}
-
 /// Renders `scene` at every setting of `grid` and against its reference.
-fn measure<S: Scene + Sync>(
+fn measure<S: Scene + Sync + ?Sized>(
     name: &str,
     about: String,
     scene: &S,
@@ -180,70 +141,75 @@ fn measure<S: Scene + Sync>(
 
 /// The room and, when present, study.vox, measured on `grid`.
 pub fn measure_all(grid: &Grid, runs: usize) -> Result<Vec<Measured>, String> {
-    let (width, height) = grid.size;
-    let base_camera = CameraSettings {
-        width,
-        height,
-        ..CameraSettings::default()
-    };
     let mut out = Vec::new();
+    for_each_scene(grid.size, |scene| {
+        out.push(measure(
+            scene.name,
+            scene.about.clone(),
+            scene.scene,
+            scene.camera,
+            scene.options,
+            grid,
+            runs,
+        )?);
+        Ok(())
+    })?;
+    Ok(out)
+}
 
-    let colors = [
-        U8Vec3::splat(220),
-        U8Vec3::new(200, 40, 40),
-        U8Vec3::new(40, 180, 60),
-        U8Vec3::new(170, 220, 255),
-        U8Vec3::splat(230),
-        U8Vec3::new(255, 240, 200),
-        U8Vec3::new(230, 190, 40),
-    ];
-    let source = FnSource::new(Palette::new(&colors), room_voxel);
-    let mut materials = Materials::all_diffuse();
-    let bad = |e: voxtrace::Error| e.to_string();
-    materials.set(GLASS, Material::glass(0.9, 1.5, 0.0).map_err(bad)?);
-    materials.set(MIRROR, Material::metal(1.0, 0.05).map_err(bad)?);
-    materials.set(LAMP, Material::emissive(4.0).map_err(bad)?);
-    let storage = OctreeScene::build(&source, IAabb::centered(12)).map_err(|e| e.to_string())?;
-    let lamps: Vec<IVec3> = IAabb::centered(12)
-        .iter()
-        .filter(|&p| room_voxel(p) == LAMP)
-        .collect();
-    let room = WithMaterials::new(&storage, &materials, &lamps);
-    let camera = Camera::new(CameraSettings {
-        lookfrom: Vec3::new(3.0, 1.0, 30.0),
-        lookat: Vec3::new(0.0, -1.0, 0.0),
-        vertical_fov: 50.0,
-        ..base_camera
-    })
-    .map_err(|e| e.to_string())?;
-    let options = RenderOptions {
-        sun: None,
-        lighting: Lighting {
-            sky: Some(Vec3::splat(0.25)),
-            ..Lighting::DEFAULT
-        },
-        ..RenderOptions::default()
-    };
-    let about = "a 21x17x21 voxel room the report builds: a glass pane (ior 1.5), a mirror \
-                 (metal, roughness 0.05), a lamp of 16 emissive voxels (radiance 4), open to \
-                 a uniform sky of 0.25, no sun; camera outside the open side"
-        .to_string();
-    out.push(measure(
-        "room", about, &room, &camera, &options, grid, runs,
-    )?);
+/// One path-traced scene the report measures, as `for_each_scene` lends it.
+pub struct PathScene<'a> {
+    /// Its short name: "room" or "study.vox".
+    pub name: &'static str,
+    /// What it is, for the report's text.
+    pub about: String,
+    /// The storage with the scene's materials.
+    pub scene: &'a (dyn Scene + Sync),
+    /// Its camera at the size asked for.
+    pub camera: &'a Camera,
+    /// Its light (samples and bounces are the measurer's to set).
+    pub options: &'a RenderOptions,
+}
+
+/// Calls `f` with each path-traced scene at `size`: the material room the
+/// CLI library builds ([`voxtrace_cli::room`]), then study.vox with its
+/// own materials, sun and sky when `../shared/scenes/vox` is there (a
+/// note on standard error when it is not).
+pub fn for_each_scene(
+    (width, height): (u32, u32),
+    mut f: impl FnMut(&PathScene<'_>) -> Result<(), String>,
+) -> Result<(), String> {
+    let storage = OctreeScene::build(&room::source(), IAabb::centered(room::BOUNDS))
+        .map_err(|e| e.to_string())?;
+    let (materials, lamps) = (room::materials(), room::lamps());
+    let options = room::path_options(1);
+    f(&PathScene {
+        name: "room",
+        about: "a 21x17x21 voxel room the report builds: a glass pane (ior 1.5), a mirror \
+                (metal, roughness 0.05), a lamp of 16 emissive voxels (radiance 4), open to \
+                a uniform sky of 0.25, no sun; camera outside the open side"
+            .to_string(),
+        scene: &WithMaterials::new(&storage, &materials, &lamps),
+        camera: &room::camera(width, height),
+        options: &options,
+    })?;
 
     if !Path::new(STUDY).exists() {
         eprintln!("note: {STUDY} is absent: the material section measures the room only");
-        return Ok(out);
+        return Ok(());
     }
     let model = VoxModel::load(Path::new(STUDY)).map_err(|e| format!("{STUDY}: {e}"))?;
     let storage =
         OctreeScene::build(&model, model.bounds()).map_err(|e| format!("{STUDY}: {e}"))?;
-    let study = WithMaterials::new(&storage, model.materials(), model.emitters());
     let orbit = Orbit {
         yaw: 200.0,
         pitch: 30.0,
         distance: None,
+    };
+    let base_camera = CameraSettings {
+        width,
+        height,
+        ..CameraSettings::default()
     };
     let camera = Camera::new(fit(base_camera, orbit.direction(), Boxes::Model(&model))?)
         .map_err(|e| e.to_string())?;
@@ -260,21 +226,17 @@ pub fn measure_all(grid: &Grid, runs: usize) -> Result<Vec<Measured>, String> {
         lighting,
         ..RenderOptions::default()
     };
-    let about = format!(
-        "study.vox ({STUDY}) with its materials ({} emissive voxels), sun and sky, from \
-         the orbit 200,30 framed to fit (the README's camera)",
-        model.emitters().len()
-    );
-    out.push(measure(
-        "study.vox",
-        about,
-        &study,
-        &camera,
-        &options,
-        grid,
-        runs,
-    )?);
-    Ok(out)
+    f(&PathScene {
+        name: "study.vox",
+        about: format!(
+            "study.vox ({STUDY}) with its materials ({} emissive voxels), sun and sky, from \
+             the orbit 200,30 framed to fit (the README's camera)",
+            model.emitters().len()
+        ),
+        scene: &WithMaterials::new(&storage, model.materials(), model.emitters()),
+        camera: &camera,
+        options: &options,
+    })
 }
 
 /// The markdown of the section.

@@ -1,20 +1,29 @@
-//! A small path-traced scene the tests build themselves: the room of
-//! `voxtrace-report accuracy` (white floor, ceiling and back wall, a red
-//! and a green side wall, open toward +z; a lamp in the ceiling, a mirror
-//! on the right wall, a glass pane in front of a yellow block), its
-//! materials, and a camera outside its open side.
+//! The material room: a small path-traced scene the project builds
+//! itself, so that what measures path tracing stands without the shared
+//! models (`voxtrace-report accuracy`, the denoiser's and the guides'
+//! tests). A 21x17x21 box: white floor, ceiling and back wall, a red and a
+//! green side wall, open toward +z to a dim uniform sky; a lamp in the
+//! ceiling, a mirror on the right wall, a glass pane in front of a yellow
+//! block; its materials, and a camera outside its open side.
 
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
     Camera, CameraSettings, FnSource, IAabb, Lighting, Material, Materials, Palette, RenderOptions,
 };
 
+/// Palette index: white, the floor, ceiling and back wall.
 pub const WHITE: u8 = 1;
+/// Palette index: the left wall.
 pub const RED: u8 = 2;
+/// Palette index: the right wall.
 pub const GREEN: u8 = 3;
+/// Palette index: the glass pane.
 pub const GLASS: u8 = 4;
+/// Palette index: the mirror (metal).
 pub const MIRROR: u8 = 5;
+/// Palette index: the lamp (emissive).
 pub const LAMP: u8 = 6;
+/// Palette index: the yellow block behind the glass.
 pub const BLOCK: u8 = 7;
 
 /// The palette, index 1 (white) first.
@@ -28,7 +37,7 @@ pub const COLORS: [U8Vec3; 7] = [
     U8Vec3::new(230, 190, 40),
 ];
 
-/// The box holding the room.
+/// The room lies in `IAabb::centered(BOUNDS)`.
 pub const BOUNDS: i32 = 12;
 
 /// The room's material at `p` (0: empty).
