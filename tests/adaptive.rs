@@ -8,42 +8,13 @@
 mod common;
 
 use common::frames::scalar;
-use voxtrace::glam::{IVec3, U8Vec3, Vec3};
+use common::sources::clutter;
+use voxtrace::glam::{IVec3, Vec3};
 use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{
     render_parallel, render_pixel, render_region, Adaptive, Camera, CameraSettings, EffectPlan,
-    FnSource, Framebuffer, IAabb, Look, Material, Materials, Node, OctreeScene, Palette, Rect,
-    RenderOptions, VoxelSource, WithMaterials,
+    Framebuffer, IAabb, Look, Node, OctreeScene, Rect, RenderOptions, VoxelSource, WithMaterials,
 };
-
-/// Hashed clutter on a floor (glass, rough and mirror metal, lamps and
-/// diffuse voxels), open to the sky above: every path kind, and sky
-/// pixels beside noisy ones.
-fn clutter() -> (FnSource<impl Fn(IVec3) -> u8 + Sync>, Materials) {
-    let colors: Vec<U8Vec3> = (1..=5u8)
-        .map(|i| U8Vec3::new(50 * i, 255 - 40 * i, 30 + 45 * i))
-        .collect();
-    let palette = Palette::new(&colors);
-    let source = FnSource::new(palette, |p: IVec3| {
-        if p.y == -6 {
-            return 1;
-        }
-        let h = (p.x.wrapping_mul(73_856_093)
-            ^ p.y.wrapping_mul(19_349_663)
-            ^ p.z.wrapping_mul(83_492_791)) as u32;
-        if p.y > -6 && p.y < 2 && h % 7 == 0 {
-            (h / 7 % 5 + 1) as u8
-        } else {
-            0
-        }
-    });
-    let mut materials = Materials::all_diffuse();
-    materials.set(2, Material::glass(0.95, 1.45, 0.1).unwrap());
-    materials.set(3, Material::metal(1.0, 0.0).unwrap());
-    materials.set(4, Material::metal(0.7, 0.5).unwrap());
-    materials.set(5, Material::emissive(3.0).unwrap());
-    (source, materials)
-}
 
 /// A 40x30 view of the clutter from above its edge, the sky in its top
 /// rows.

@@ -5,6 +5,9 @@
 //! what the effect plan picks, and that all-diffuse scenes keep the
 //! face-shaded kernels byte for byte.
 
+mod common;
+
+use common::sources::clutter;
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
     render, unpack, Bounces, Camera, CameraSettings, DenseScene, EffectPlan, FnSource, IAabb,
@@ -363,27 +366,7 @@ fn materials_refuse_out_of_range_parameters() {
 fn a_mixed_material_scene_is_the_same_on_both_backends_two_threads_and_a_crop() {
     // Hashed clutter on a floor: glass, rough and mirror metal, lamps and
     // diffuse voxels side by side, so every path kind meets every other.
-    let colors: Vec<U8Vec3> = (1..=5u8)
-        .map(|i| U8Vec3::new(50 * i, 255 - 40 * i, 30 + 45 * i))
-        .collect();
-    let source = FnSource::new(palette(&colors), |p: IVec3| {
-        if p.y == -6 {
-            return 1;
-        }
-        let h = (p.x.wrapping_mul(73_856_093)
-            ^ p.y.wrapping_mul(19_349_663)
-            ^ p.z.wrapping_mul(83_492_791)) as u32;
-        if p.y > -6 && p.y < 2 && h % 7 == 0 {
-            (h / 7 % 5 + 1) as u8
-        } else {
-            0
-        }
-    });
-    let mut materials = Materials::all_diffuse();
-    materials.set(2, Material::glass(0.95, 1.45, 0.1).unwrap());
-    materials.set(3, Material::metal(1.0, 0.0).unwrap());
-    materials.set(4, Material::metal(0.7, 0.5).unwrap());
-    materials.set(5, Material::emissive(3.0).unwrap());
+    let (source, materials) = clutter();
     let bounds = IAabb::centered(12);
     let lights: Vec<IVec3> = bounds
         .iter()
