@@ -18,6 +18,7 @@ pub mod errors;
 mod export;
 mod frames;
 pub mod guides;
+pub mod image_error;
 pub mod part;
 mod pipeline;
 pub mod room;

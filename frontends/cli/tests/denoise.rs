@@ -14,22 +14,9 @@ use common::run::{assert_refused, fresh_dir, stderr, voxtrace};
 use voxtrace::{unpack, IAabb, Rect, SceneMaterials};
 use voxtrace_cli::denoise::denoise;
 use voxtrace_cli::guides::render_guides;
+use voxtrace_cli::image_error::rmse;
 use voxtrace_cli::room;
 use voxtrace_cli::{Backend, BuiltScene};
-
-/// Root mean square difference over the color channels, in 0..=255 (the
-/// accuracy report's measure).
-fn rmse(pixels: &[u32], reference: &[u32]) -> f64 {
-    let mut sum = 0.0;
-    for (&p, &r) in pixels.iter().zip(reference) {
-        let (p, r) = (unpack(p), unpack(r));
-        for c in 0..3 {
-            let d = f64::from(p[c]) - f64::from(r[c]);
-            sum += d * d;
-        }
-    }
-    (sum / (3 * pixels.len().max(1)) as f64).sqrt()
-}
 
 #[test]
 fn denoising_brings_a_noisy_path_traced_room_closer_to_its_reference() {

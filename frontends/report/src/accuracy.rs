@@ -19,11 +19,11 @@ use voxtrace_cli::on_threads;
 
 use crate::common_args::Output;
 use crate::geometric;
-use crate::image_error::{psnr, rmse};
 use crate::measure::{count_of, cpu_name, format_ms, median_of};
 use crate::plot::{Chart, Line, Series};
 use crate::{convergence, path_accuracy};
 use plotters::chart::SeriesLabelPosition;
+use voxtrace_cli::image_error::{psnr, rmse};
 
 /// Options of the `accuracy` report.
 #[derive(Debug, clap::Args)]

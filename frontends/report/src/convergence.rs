@@ -13,9 +13,9 @@ use std::time::{Duration, Instant};
 
 use voxtrace::{render_parallel, Adaptive, Framebuffer, Rect, RenderOptions};
 
-use crate::image_error::{psnr, rmse};
 use crate::measure::{count_of, format_ms, median_of};
 use crate::path_accuracy::{self, PathScene};
+use voxtrace_cli::image_error::{psnr, rmse};
 
 /// How the section measures.
 pub struct Plan {

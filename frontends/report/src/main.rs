@@ -10,7 +10,6 @@ mod common_args;
 mod convergence;
 mod embree_input;
 mod geometric;
-mod image_error;
 mod measure;
 mod naive_dda;
 mod path_accuracy;

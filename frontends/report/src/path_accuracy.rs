@@ -18,9 +18,9 @@ use voxtrace::{
 use voxtrace_cli::room;
 use voxtrace_flags::{fit, Boxes};
 
-use crate::image_error::{psnr, rmse};
 use crate::measure::{count_of, format_ms, median_of};
 use crate::plot::{Chart, Line, Series};
+use voxtrace_cli::image_error::{psnr, rmse};
 
 /// Where study.vox is, from the repository root; skipped when absent.
 const STUDY: &str = "../shared/scenes/vox/study.vox";

@@ -1,11 +1,11 @@
 //! How far a frame is from a reference frame: the root mean square
 //! difference of their color channels and the PSNR it gives, for the
-//! accuracy report's sections.
+//! accuracy report's sections and the tests that measure error.
 
 use voxtrace::unpack;
 
 /// Root mean square difference over every color channel, in 0..=255 units.
-pub(crate) fn rmse(pixels: &[u32], reference: &[u32]) -> f64 {
+pub fn rmse(pixels: &[u32], reference: &[u32]) -> f64 {
     let mut sum = 0.0;
     for (&p, &r) in pixels.iter().zip(reference) {
         let (p, r) = (unpack(p), unpack(r));
@@ -18,7 +18,7 @@ pub(crate) fn rmse(pixels: &[u32], reference: &[u32]) -> f64 {
 }
 
 /// Peak signal to noise ratio for 8-bit channels; infinite for no error.
-pub(crate) fn psnr(rmse: f64) -> f64 {
+pub fn psnr(rmse: f64) -> f64 {
     20.0 * (255.0 / rmse).log10()
 }
 
