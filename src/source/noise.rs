@@ -67,13 +67,47 @@ impl Perlin {
     /// Noise at `(x, y)`, in `[-1, 1]`.
     #[must_use]
     pub fn get(&self, x: f64, y: f64) -> f64 {
-        let (fx, fy) = (floor64(x), floor64(y));
+        self.row(y).get(x)
+    }
+
+    /// The noise along the line of constant `y`, with the work that
+    /// depends on `y` alone done once: `row(y).get(x)` is `get(x, y)`, bit
+    /// for bit (it is how `get` computes it).
+    #[inline]
+    pub(crate) fn row(&self, y: f64) -> PerlinRow<'_> {
+        let fy = floor64(y);
+        let dy = y - fy;
+        PerlinRow {
+            perm: &self.perm,
+            yi: (fy as i64 & 255) as usize,
+            dy,
+            v: fade(dy),
+        }
+    }
+}
+
+/// [`Perlin`] along one line of constant `y` ([`Perlin::row`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PerlinRow<'p> {
+    perm: &'p [u8; 512],
+    /// The lattice row, wrapped into the 256-periodic table.
+    yi: usize,
+    /// `y` within its lattice cell, and its fade.
+    dy: f64,
+    v: f64,
+}
+
+impl PerlinRow<'_> {
+    /// Noise at `x` on this row, in `[-1, 1]`.
+    #[inline]
+    pub(crate) fn get(&self, x: f64) -> f64 {
+        let fx = floor64(x);
         // Lattice cell, wrapped into the 256-periodic table.
         let xi = (fx as i64 & 255) as usize;
-        let yi = (fy as i64 & 255) as usize;
-        let (dx, dy) = (x - fx, y - fy);
-        let (u, v) = (fade(dx), fade(dy));
-        let p = &self.perm;
+        let (yi, dy, v) = (self.yi, self.dy, self.v);
+        let dx = x - fx;
+        let u = fade(dx);
+        let p = self.perm;
         let a = p[xi] as usize + yi;
         let b = p[xi + 1] as usize + yi;
         let n00 = grad(p[a], dx, dy);

@@ -57,10 +57,17 @@ impl VoxelGenerator {
     /// Terrain height of column `(x, z)`, in `[0, HEIGHT]`.
     #[must_use]
     pub fn height(&self, x: i32, z: i32) -> i32 {
-        let n = self.perlin.get(f64::from(x) * SCALE, f64::from(z) * SCALE);
-        // [-1, 1] -> [0, HEIGHT]; `as` truncates toward zero, which is floor
-        // here because the value is non-negative.
-        ((n + 1.0) * 0.5 * f64::from(HEIGHT)) as i32
+        to_height(self.perlin.get(f64::from(x) * SCALE, f64::from(z) * SCALE))
+    }
+
+    /// The heights of the columns `(x, z)` for `x` from `x0` on, one per
+    /// slot of `out`: [`VoxelGenerator::height`] of each, bit for bit,
+    /// with the noise's work along `z` done once.
+    fn heights(&self, x0: i32, z: i32, out: &mut [i32]) {
+        let row = self.perlin.row(f64::from(z) * SCALE);
+        for (h, x) in out.iter_mut().zip(x0..) {
+            *h = to_height(row.get(f64::from(x) * SCALE));
+        }
     }
 
     /// The voxel at `pos`: `Some` when `pos.y` is at or below its column's
@@ -77,6 +84,21 @@ impl VoxelGenerator {
     pub fn height_to_color(&self, y: i32) -> U8Vec3 {
         self.palette.color(band(y))
     }
+}
+
+/// The most columns whose heights [`VoxelGenerator`]'s `classify` reads:
+/// the footprint of the octree builder's 16^3 tiles.
+const COLUMNS_TO_CLASSIFY: i64 = 16 * 16;
+
+/// Columns whose heights `fill_box` holds at once (on the stack).
+const ROW: usize = 32;
+
+/// Noise in [-1, 1] as a height in [0, HEIGHT].
+#[inline]
+fn to_height(n: f64) -> i32 {
+    // `as` truncates toward zero, which is floor here because the value is
+    // non-negative.
+    ((n + 1.0) * 0.5 * f64::from(HEIGHT)) as i32
 }
 
 /// Material of the band a height falls in.
@@ -107,7 +129,9 @@ impl VoxelSource for VoxelGenerator {
         }
     }
 
-    /// One noise evaluation per column, however tall the box.
+    /// One noise evaluation per column, however tall the box; the voxels
+    /// written a row of columns at a time in the output's order (x
+    /// fastest), so each layer of a row is one run of bytes.
     fn fill_box(&self, region: IAabb, out: &mut [u8]) {
         if region.is_empty() {
             return;
@@ -117,13 +141,18 @@ impl VoxelSource for VoxelGenerator {
         }
         let size = region.size();
         let (sx, sy) = (size.x as usize, size.y as usize);
+        let mut heights = [0i32; ROW];
         for (zi, z) in (region.min.z..region.max.z).enumerate() {
-            for (xi, x) in (region.min.x..region.max.x).enumerate() {
-                let h = self.height(x, z);
+            for x0 in (region.min.x..region.max.x).step_by(ROW) {
+                let x1 = x0.saturating_add(ROW as i32).min(region.max.x);
+                let row = &mut heights[..(x1 - x0) as usize];
+                self.heights(x0, z, row);
+                let first = (x0 - region.min.x) as usize;
                 for (yi, y) in (region.min.y..region.max.y).enumerate() {
-                    let idx = xi + sx * (yi + sy * zi);
-                    if let Some(slot) = out.get_mut(idx) {
-                        *slot = if y <= h { band(y) } else { 0 };
+                    let material = band(y);
+                    let start = first + sx * (yi + sy * zi);
+                    for (slot, &h) in out[start..start + row.len()].iter_mut().zip(&*row) {
+                        *slot = if y <= h { material } else { 0 };
                     }
                 }
             }
@@ -132,11 +161,46 @@ impl VoxelSource for VoxelGenerator {
 
     /// Above `HEIGHT` is empty; at or below 0 is solid, and one material when
     /// the box stays in one color band.
+    ///
+    /// A box between the two, up to 16 by 16 columns (the footprint of
+    /// the octree builder's tiles), is decided by the heights of its
+    /// columns: empty above the highest, solid below the lowest. Most tiles
+    /// between 0 and `HEIGHT` lie wholly in the sky or the ground, and
+    /// filling them cost far more than these noise evaluations.
     fn classify(&self, region: IAabb) -> Region {
         let (lo, hi) = (region.min.y, region.max.y - 1);
         if lo > HEIGHT {
+            return Region::Empty;
+        }
+        let one_band = band(lo) == band(hi);
+        if hi <= 0 && one_band {
+            return Region::Solid(band(lo));
+        }
+        let size = region.size();
+        if i64::from(size.x) * i64::from(size.z) > COLUMNS_TO_CLASSIFY {
+            return Region::Mixed;
+        }
+        // Empty while every column lies below the box, solid while every
+        // one reaches its top; mixed (and done) once neither holds.
+        let (mut empty, mut solid) = (true, one_band);
+        let mut heights = [0i32; ROW];
+        for z in region.min.z..region.max.z {
+            for x0 in (region.min.x..region.max.x).step_by(ROW) {
+                let x1 = x0.saturating_add(ROW as i32).min(region.max.x);
+                let row = &mut heights[..(x1 - x0) as usize];
+                self.heights(x0, z, row);
+                for &h in &*row {
+                    empty &= h < lo;
+                    solid &= h >= hi;
+                }
+                if !(empty || solid) {
+                    return Region::Mixed;
+                }
+            }
+        }
+        if empty {
             Region::Empty
-        } else if hi <= 0 && band(lo) == band(hi) {
+        } else if solid {
             Region::Solid(band(lo))
         } else {
             Region::Mixed

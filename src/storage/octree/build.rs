@@ -11,7 +11,7 @@ use glam::IVec3;
 use crate::error::Error;
 use crate::geom::IAabb;
 use crate::storage::octree::node::{
-    brick_bit, brick_local, child_offset, BrickMaterials, Node, NodeKind, BRICK,
+    brick_local, child_offset, BrickMaterials, Node, NodeKind, BRICK,
 };
 use crate::storage::octree::{occupied_box, OctreeLen, OctreeScene};
 use crate::voxel::{Region, VoxelSource};
@@ -202,28 +202,43 @@ impl<'s, S: VoxelSource + ?Sized, K: Sink> Builder<'s, S, K> {
         self.tile[(local.x + size.x * (local.y + size.y * local.z)) as usize]
     }
 
+    /// The brick at `corner` from the current tile: its occupancy and its
+    /// solid voxels' materials in bit order.
     fn brick(&mut self, corner: IVec3) -> Result<Option<Node>, Error> {
         let mut occupancy = 0u64;
         let mut packed = [0u8; 64];
         let mut count = 0;
-        for z in 0..BRICK {
-            for y in 0..BRICK {
-                for x in 0..BRICK {
-                    let local = IVec3::new(x, y, z);
-                    let m = self.tile_material(corner + local);
-                    if m != 0 {
-                        occupancy |= 1 << brick_bit(local);
+        // Bit order is x fastest, then y, then z (`brick_bit`): the loops
+        // run in it, so the materials come out packed.
+        let mut visit = |bit: u32, m: u8| {
+            if m != 0 {
+                occupancy |= 1 << bit;
+                packed[count] = m;
+                count += 1;
+            }
+        };
+        let inside = IAabb::new(corner, corner + BRICK);
+        if inside.intersect(&self.tile_box) == inside {
+            // The whole brick is in the tile: four rows of four bytes per
+            // layer, read in place.
+            let size = self.tile_box.size().as_uvec3();
+            let (row, layer) = (size.x as usize, (size.x * size.y) as usize);
+            let local = (corner - self.tile_box.min).as_uvec3();
+            let base = local.x as usize + row * local.y as usize + layer * local.z as usize;
+            let mut bit = 0;
+            for z in 0..BRICK as usize {
+                for y in 0..BRICK as usize {
+                    let start = base + layer * z + row * y;
+                    for &m in &self.tile[start..start + BRICK as usize] {
+                        visit(bit, m);
+                        bit += 1;
                     }
                 }
             }
-        }
-        // Materials in bit order, for popcount indexing.
-        let mut bits = occupancy;
-        while bits != 0 {
-            let local = brick_local(bits.trailing_zeros());
-            packed[count] = self.tile_material(corner + local);
-            count += 1;
-            bits &= bits - 1;
+        } else {
+            for bit in 0..64 {
+                visit(bit, self.tile_material(corner + brick_local(bit)));
+            }
         }
         let solid = &packed[..count];
         let Some(&first) = solid.first() else {
