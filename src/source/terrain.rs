@@ -57,12 +57,16 @@ impl VoxelGenerator {
     /// Terrain height of column `(x, z)`, in `[0, HEIGHT]`.
     #[must_use]
     pub fn height(&self, x: i32, z: i32) -> i32 {
-        to_height(self.perlin.get(f64::from(x) * SCALE, f64::from(z) * SCALE))
+        let mut height = [0];
+        self.heights(x, z, &mut height);
+        height[0]
     }
 
     /// The heights of the columns `(x, z)` for `x` from `x0` on, one per
-    /// slot of `out`: [`VoxelGenerator::height`] of each, bit for bit,
-    /// with the noise's work along `z` done once.
+    /// slot of `out`, with the noise's work along `z` done once (the same
+    /// bits as a column at a time: `Perlin::row`). Not inlined: every
+    /// height is computed by this one copy (the firmware's code budget).
+    #[inline(never)]
     fn heights(&self, x0: i32, z: i32, out: &mut [i32]) {
         let row = self.perlin.row(f64::from(z) * SCALE);
         for (h, x) in out.iter_mut().zip(x0..) {
