@@ -105,7 +105,10 @@ pub use render::options::{
     Background, Bounces, Fog, Lighting, Occlusion, RenderOptions, DEFAULT_SUN,
 };
 pub use render::plan::{EffectPlan, Look};
-pub use render::scalar::{render, render_pixel, render_region, render_span};
+pub use render::rounds::{PixelSamples, Rounds, RoundsDone, UNIFORM_ROUND};
+pub use render::scalar::{
+    render, render_pixel, render_region, render_region_in_rounds, render_span,
+};
 pub use render::shade::{pack, shade, sky, unpack, FLAT_SKY, SKY_HORIZON, SKY_ZENITH};
 pub use render::stats::{RayStats, Rect};
 pub use render::view::{Orbit, Projection, ViewPreset};
@@ -140,6 +143,8 @@ pub use io::png::{decode_png, encode_png, encode_png_with_text, read_png, write_
 pub use render::framebuffer::Framebuffer;
 #[cfg(feature = "rayon")]
 pub use render::parallel::pixels::{ParPixels, PixelRef, Pixels};
+#[cfg(feature = "rayon")]
+pub use render::parallel::rounds::render_parallel_in_rounds;
 #[cfg(feature = "rayon")]
 pub use render::parallel::{render_parallel, render_parallel_with_progress};
 

@@ -14,6 +14,8 @@ use crate::render::options::Background;
 #[cfg(feature = "path")]
 use crate::render::path::{Path, PathSetup};
 use crate::render::rays::{around, primary, secondary};
+#[cfg(feature = "path")]
+use crate::render::rounds::PixelSamples;
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{face_index, fog_blend, lit, pack, pack_mean, sky, FLAT_SKY};
 use crate::render::shader::{FrameJob, Kernel, Shader};
@@ -115,6 +117,20 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Kernel
         memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats) {
         self.trace_pixel(scene, x, y, t_start, memory)
+    }
+
+    #[inline]
+    fn resume<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        x: u32,
+        y: u32,
+        t_start: f32,
+        memory: &mut WalkMemory<'s>,
+        pixel: &mut PixelSamples,
+        round: u32,
+    ) -> (Option<u32>, RayStats) {
+        self.resume_pixel(scene, (x, y), t_start, memory, pixel, round)
     }
 }
 

@@ -29,6 +29,7 @@ use crate::material::Materials;
 use crate::material::SceneMaterials;
 use crate::render::camera::Camera;
 use crate::render::options::{Background, RenderOptions};
+use crate::render::rounds::PixelSamples;
 #[cfg(feature = "path")]
 use crate::render::path::PathSetup;
 #[cfg(feature = "path")]
@@ -143,6 +144,33 @@ pub(crate) trait Kernel: Sync {
         t_start: f32,
         memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats);
+
+    /// Pixel `(x, y)` continued from `pixel` to the end of round `round`
+    /// (from 1) of a render in rounds: its packed color, `None` when it
+    /// was already done (nothing traced), and the rays traced. Kernels
+    /// that take all their samples at once do so in round 1, then are
+    /// done; the path tracer takes [`crate::render::rounds::Rounds`]'
+    /// samples per round. The same `t_start` and `memory` rules as
+    /// [`Kernel::pixel`].
+    #[allow(clippy::too_many_arguments)]
+    fn resume<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        x: u32,
+        y: u32,
+        t_start: f32,
+        memory: &mut WalkMemory<'s>,
+        pixel: &mut PixelSamples,
+        round: u32,
+    ) -> (Option<u32>, RayStats) {
+        let _ = round;
+        if pixel.done {
+            return (None, RayStats::default());
+        }
+        pixel.done = true;
+        let (rgba, stats) = self.pixel(scene, x, y, t_start, memory);
+        (Some(rgba), stats)
+    }
 
     /// Whether the kernel's primary rays use a tile's clear distance (the
     /// debug view walks from the camera to show every box).
