@@ -181,7 +181,10 @@ mod tests {
         let rounds = Rounds::of(&plan);
         assert_eq!((rounds.samples_per_round, rounds.most), (16, 4));
         let after = |n| rounds.options_after(&plan, n).adaptive.unwrap().max_samples;
-        assert_eq!([after(1), after(2), after(3), after(4), after(9)], [16, 32, 48, 64, 64]);
+        assert_eq!(
+            [after(1), after(2), after(3), after(4), after(9)],
+            [16, 32, 48, 64, 64]
+        );
     }
 
     #[test]

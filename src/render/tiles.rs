@@ -115,15 +115,17 @@ impl Tile {
 /// no sum passes u32::MAX for a rectangle that reaches the last pixel of
 /// the largest frame.
 fn tiles_of(rect: Rect) -> impl Iterator<Item = Tile> {
-    (0..rect.height).step_by(TILE as usize).flat_map(move |dy0| {
-        let dy1 = dy0 + TILE.min(rect.height - dy0);
-        (0..rect.width).step_by(TILE as usize).map(move |dx0| Tile {
-            dx0,
-            dy0,
-            dx1: dx0 + TILE.min(rect.width - dx0),
-            dy1,
+    (0..rect.height)
+        .step_by(TILE as usize)
+        .flat_map(move |dy0| {
+            let dy1 = dy0 + TILE.min(rect.height - dy0);
+            (0..rect.width).step_by(TILE as usize).map(move |dx0| Tile {
+                dx0,
+                dy0,
+                dx1: dx0 + TILE.min(rect.width - dx0),
+                dy1,
+            })
         })
-    })
 }
 
 /// The distance before which no primary ray of `tile` (of `rect`) hits

@@ -29,11 +29,11 @@ use crate::material::Materials;
 use crate::material::SceneMaterials;
 use crate::render::camera::Camera;
 use crate::render::options::{Background, RenderOptions};
-use crate::render::rounds::PixelSamples;
 #[cfg(feature = "path")]
 use crate::render::path::PathSetup;
 #[cfg(feature = "path")]
 use crate::render::plan::{EffectPlan, Look};
+use crate::render::rounds::PixelSamples;
 use crate::render::shade::{face_weights, pack};
 use crate::render::stats::RayStats;
 use crate::scene::Scene;
