@@ -32,6 +32,8 @@ pub struct Sampling {
     pub spp: Option<u16>,
     /// `--noise-threshold`: adaptive sampling to this relative error.
     pub noise_threshold: Option<f32>,
+    /// `--max-spp`: adaptive sampling to at most this many samples.
+    pub max_spp: Option<u16>,
     /// `--quality`.
     pub quality: Quality,
 }
@@ -40,7 +42,8 @@ pub struct Sampling {
 /// face-shaded scene, its effects) as `sampling` asks, for a frame that is
 /// `path_traced` or not. `--spp N` is exactly N uniform samples; without
 /// it a path-traced frame samples adaptively, to `--noise-threshold` when
-/// given, and a face-shaded one takes 1 sample (16 under `final`, which
+/// given and to at most `--max-spp` samples (its first round no larger),
+/// and a face-shaded one takes 1 sample (16 under `final`, which
 /// also turns shadows on and occlusion on unless `--ao N` gave its own
 /// N); flat and debug looks get no effects.
 pub fn apply(sampling: &Sampling, path_traced: bool, options: &mut RenderOptions) {
@@ -55,9 +58,11 @@ pub fn apply(sampling: &Sampling, path_traced: bool, options: &mut RenderOptions
                 } else {
                     Adaptive::DEFAULT
                 };
+                let max = sampling.max_spp.unwrap_or(base.max_samples).max(1);
                 Some(Adaptive {
                     threshold: threshold.unwrap_or(base.threshold),
-                    ..base
+                    min_samples: base.min_samples.min(max),
+                    max_samples: max,
                 })
             }
         };

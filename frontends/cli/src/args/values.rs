@@ -207,6 +207,18 @@ pub fn parse_threshold(s: &str) -> Result<f32, String> {
     }
 }
 
+/// `--time-limit`: seconds, positive and finite (a fraction allowed),
+/// as a duration.
+pub fn parse_seconds(s: &str) -> Result<std::time::Duration, String> {
+    match s.trim().parse::<f64>() {
+        Ok(secs) if secs > 0.0 => std::time::Duration::try_from_secs_f64(secs)
+            .ok()
+            .filter(|d| !d.is_zero()),
+        _ => None,
+    }
+    .ok_or_else(|| format!("'{s}' is not a time limit: a positive number of seconds, such as 30"))
+}
+
 /// `X,Y,W,H` in whole pixels.
 pub fn parse_rect(s: &str) -> Result<Rect, String> {
     let [x, y, width, height] = parse_numbers::<4, u32>(s, "four whole numbers X,Y,W,H")?;
