@@ -106,6 +106,9 @@ fn the_frame_after_n_rounds_is_the_one_pass_frame_of_options_after_n() {
                 assert_eq!(done.rounds, stop.min(rounds.most), "{done:?}");
                 assert_eq!(done.complete, stop >= rounds.most, "{done:?}");
                 let cut = rounds.options_after(&plan, done.rounds);
+                // The cap the CLI reports is the one the options carry.
+                let carried = cut.adaptive.map_or(cut.samples, |a| a.max_samples);
+                assert_eq!(carried, rounds.samples_after(done.rounds));
                 let (one_pass, rays) = scalar(scene, &cam, &cut);
                 assert!(frame == one_pass, "{options:?}: {stop} rounds differ");
                 assert_eq!(done.rays, rays, "{stop} rounds count other rays");

@@ -45,6 +45,8 @@ pub struct Rounds {
     /// them. 1 for every look but the path tracer, which takes its
     /// samples in one pass of the frame.
     pub most: u32,
+    /// Samples a pixel takes at most over every round.
+    pub samples: u16,
 }
 
 impl Rounds {
@@ -57,6 +59,7 @@ impl Rounds {
             return Rounds {
                 samples_per_round: options.samples.max(1),
                 most: 1,
+                samples: options.samples.max(1),
             };
         }
         let per_round = samples_per_round(options.adaptive.as_ref(), options.samples);
@@ -67,6 +70,7 @@ impl Rounds {
         Rounds {
             samples_per_round: per_round,
             most: u32::from(total.div_ceil(per_round)),
+            samples: total,
         }
     }
 
@@ -90,11 +94,12 @@ impl Rounds {
     }
 
     /// The most samples a pixel has taken after `rounds` rounds (at least
-    /// one round), saturating at `u16::MAX`.
+    /// one round): `rounds` rounds' samples, no more than
+    /// [`Rounds::samples`].
     #[must_use]
     pub fn samples_after(&self, rounds: u32) -> u16 {
         let cap = u32::from(self.samples_per_round).saturating_mul(rounds.max(1));
-        u16::try_from(cap).unwrap_or(u16::MAX)
+        u16::try_from(cap).map_or(self.samples, |cap| cap.min(self.samples))
     }
 }
 
@@ -197,6 +202,8 @@ mod tests {
         assert_eq!((rounds.samples_per_round, rounds.most), (16, 3));
         let after = |n| rounds.options_after(&plan, n).samples;
         assert_eq!([after(1), after(2), after(3)], [16, 32, 40]);
+        let cap = |n| rounds.samples_after(n);
+        assert_eq!([cap(1), cap(2), cap(3), cap(4)], [16, 32, 40, 40]);
         // Few samples are one round.
         let few = path_plan(RenderOptions {
             samples: 5,
