@@ -259,7 +259,7 @@ fn notes(
     if given.time_limit {
         notes.extend(budget::unused_note(plan));
     }
-    notes.extend(ignored_flags(given, settings, format));
+    notes.extend(ignored_flags(given, settings, format, options));
     notes
 }
 

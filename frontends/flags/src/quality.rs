@@ -44,9 +44,15 @@ pub struct Sampling {
 /// it a path-traced frame samples adaptively, to `--noise-threshold` when
 /// given and to at most `--max-spp` samples (its first round no larger),
 /// and a face-shaded one takes 1 sample (16 under `final`, which
-/// also turns shadows on and occlusion on unless `--ao N` gave its own
-/// N); flat and debug looks get no effects.
-pub fn apply(sampling: &Sampling, path_traced: bool, options: &mut RenderOptions) {
+/// also turns shadows on and occlusion on, reaching `ao_distance`
+/// (`--ao-distance`), unless `--ao N` gave its own); flat and debug looks
+/// get no effects.
+pub fn apply(
+    sampling: &Sampling,
+    path_traced: bool,
+    ao_distance: f32,
+    options: &mut RenderOptions,
+) {
     let final_quality = sampling.quality == Quality::Final;
     if path_traced {
         options.samples = sampling.spp.unwrap_or(1);
@@ -74,7 +80,7 @@ pub fn apply(sampling: &Sampling, path_traced: bool, options: &mut RenderOptions
         options.shadows = true;
         options.occlusion = options.occlusion.or(Some(Occlusion {
             rays: FINAL_AO_RAYS,
-            distance: Occlusion::DEFAULT_DISTANCE,
+            distance: ao_distance,
         }));
         options.samples = sampling.spp.unwrap_or(FINAL_SPP);
     } else {

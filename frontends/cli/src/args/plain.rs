@@ -101,6 +101,7 @@ impl Args {
                 rays,
                 distance: self.ao_distance,
             }),
+            ao_distance: self.ao_distance,
             sampling: Sampling {
                 spp: self.spp,
                 noise_threshold: self.noise_threshold,
