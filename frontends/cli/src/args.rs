@@ -194,12 +194,13 @@ pub struct Args {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=4096), conflicts_with = "spp")]
     pub max_spp: Option<u16>,
 
-    /// A time budget for each path-traced frame's render, in seconds: its
-    /// samples are taken in rounds over the whole frame (16 per pixel, or
-    /// the adaptive minimum), and a round begins only while the last
-    /// one's time still fits; the first always runs. The frame is then
-    /// exactly the one `--stats`' samples_cap gives without the limit
-    /// (`--spp`, or `--max-spp` when adaptive). Not with --tiles.
+    /// A time budget in seconds for the render of each path-traced frame
+    /// (not the build): its samples are taken in rounds over the whole
+    /// frame (16 per pixel, or the adaptive minimum), and a round begins
+    /// only if the time spent plus the last round's time is within the
+    /// budget; the first round always runs. The frame written is exactly
+    /// the one the flag `--stats` prints as `reproduce` (--spp N or
+    /// --max-spp N) renders without a limit. Not with --tiles.
     #[arg(long, value_name = "SECONDS", value_parser = parse_seconds, allow_hyphen_values = true)]
     pub time_limit: Option<std::time::Duration>,
 

@@ -380,3 +380,12 @@ impl RenderJob<'_> {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_pixel_keeps_36_bytes_between_rounds() {
+        // docs/cli.md says so; the memory check counts them.
+        assert_eq!(super::ROUND_STATE_BYTES, 36);
+    }
+}

@@ -30,6 +30,9 @@ use crate::scene::Scene;
 /// ([`Error::SizeMismatch`] otherwise); `pixels` holds at least one
 /// [`PixelSamples`] per pixel (overwritten). Allocates nothing beyond
 /// rayon's own job bookkeeping.
+// (The arguments of `render_parallel_with_progress`, the pixels' state
+// and the predicate: bundling them would hide which is which.)
+#[allow(clippy::too_many_arguments)]
 pub fn render_parallel_in_rounds<S, P>(
     scene: &S,
     camera: &Camera,

@@ -4,7 +4,8 @@
 //! estimation toward the sun's disk and the emissive voxels at every
 //! diffuse hit (`direct.rs`), GGX reflection off metal (`bsdf.rs`) and
 //! Fresnel reflection and refraction through glass, walked voxel by voxel
-//! inside (`glass.rs`).
+//! inside (`glass.rs`). A pixel takes its samples in order, in one pass
+//! or resumed round by round (`pixel.rs`).
 //!
 //! The kinds of material the scene holds are `const` generics: a scene
 //! without glass compiles no refraction code, one without emitters samples
