@@ -35,14 +35,25 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
     // One memory for the whole rectangle: a tile's first ray begins from
     // the last ray of the tile before, its neighbour.
     let mut memory = WalkMemory::new();
-    for tile in tiles_of(rect) {
-        let t_start = clear_distance(kernel, scene, camera, rect, tile);
-        for dy in tile.dy0..tile.dy1 {
-            for dx in tile.dx0..tile.dx1 {
-                let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
-                let (rgba, rays) = kernel.pixel(scene, x, y, t_start, &mut memory);
-                put(dx, dy, rgba);
-                stats += rays;
+    // Offsets inside the rectangle, so that no sum passes u32::MAX for a
+    // rectangle that reaches the last pixel of the largest frame.
+    for dy0 in (0..rect.height).step_by(TILE as usize) {
+        let dy1 = dy0 + TILE.min(rect.height - dy0);
+        for dx0 in (0..rect.width).step_by(TILE as usize) {
+            let dx1 = dx0 + TILE.min(rect.width - dx0);
+            let (x0, y0) = (rect.x.wrapping_add(dx0), rect.y.wrapping_add(dy0));
+            let (x1, y1) = (rect.x.wrapping_add(dx1), rect.y.wrapping_add(dy1));
+            // (A tile past u32::MAX, outside every frame, wraps: no beam.)
+            let beam = kernel.uses_beam() && x1 > x0 && y1 > y0;
+            let frustum = beam.then(|| camera.tile_frustum(x0, y0, x1, y1)).flatten();
+            let t_start = frustum.map_or(0.0, |f| scene.clear_distance(&f));
+            for dy in dy0..dy1 {
+                for dx in dx0..dx1 {
+                    let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
+                    let (rgba, rays) = kernel.pixel(scene, x, y, t_start, &mut memory);
+                    put(dx, dy, rgba);
+                    stats += rays;
+                }
             }
         }
     }
