@@ -8,7 +8,7 @@ use crate::error::Error;
 use crate::render::camera::Camera;
 use crate::render::options::RenderOptions;
 use crate::render::rounds::{in_rounds, PixelSamples, RoundsDone};
-use crate::render::shader::{FrameJob, Kernel, Shader};
+use crate::render::shader::{FrameJob, Kernel, Resumable, RoundsJob, Shader};
 use crate::render::stats::{RayStats, Rect};
 use crate::render::tiles::{render_tiles, resume_tiles};
 use crate::scene::Scene;
@@ -166,16 +166,36 @@ pub fn render_region_in_rounds<S: Scene + ?Sized>(
     }
     let pixels = &mut pixels[..required];
     pixels.fill(PixelSamples::default());
-    Ok(
-        Shader::new(options, camera, scene.materials()).dispatch(RegionInRounds {
-            scene,
-            camera,
-            rect: region,
-            out: &mut out[..required],
-            pixels,
-            keep_going,
-        }),
-    )
+    let shader = Shader::new(options, camera, scene.materials());
+    let job = RegionInRounds {
+        scene,
+        camera,
+        rect: region,
+        out: &mut out[..required],
+        pixels,
+        keep_going,
+    };
+    Ok(match shader.dispatch_rounds(job) {
+        Ok(done) => done,
+        // Not path-traced: one pass, one round.
+        Err(job) => {
+            job.pixels.fill(PixelSamples {
+                done: true,
+                ..PixelSamples::default()
+            });
+            let rays = shader.dispatch(Tiles {
+                scene,
+                camera,
+                rect: region,
+                out: job.out,
+            });
+            RoundsDone {
+                rays,
+                rounds: 1,
+                complete: true,
+            }
+        }
+    })
 }
 
 /// The pixels of `rect` in rounds, into `out` (row-major, stride
@@ -189,9 +209,9 @@ struct RegionInRounds<'a, S: ?Sized, F> {
     keep_going: F,
 }
 
-impl<S: Scene + ?Sized, F: FnMut(u32) -> bool> FrameJob for RegionInRounds<'_, S, F> {
+impl<S: Scene + ?Sized, F: FnMut(u32) -> bool> RoundsJob for RegionInRounds<'_, S, F> {
     type Output = RoundsDone;
-    fn run<K: Kernel>(self, kernel: &K) -> RoundsDone {
+    fn run<K: Resumable>(self, kernel: &K) -> RoundsDone {
         let RegionInRounds {
             scene,
             camera,

@@ -9,7 +9,7 @@
 
 use crate::render::camera::Camera;
 use crate::render::rounds::PixelSamples;
-use crate::render::shader::Kernel;
+use crate::render::shader::{Kernel, Resumable};
 use crate::render::stats::{RayStats, Rect};
 use crate::scene::Scene;
 use crate::scene::WalkMemory;
@@ -61,13 +61,13 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
 }
 
 /// Continues every pixel of `rect` to the end of round `round` (from 1)
-/// with `kernel` ([`Kernel::resume`]), in the tiles of [`render_tiles`]:
+/// with `kernel` ([`Resumable::resume`]), in the tiles of [`render_tiles`]:
 /// `pixels` holds each pixel's samples so far (row-major, stride
 /// `rect.width`), and `put(dx, dy, rgba)` hears each pixel that took
 /// samples. A tile whose pixels are all done is skipped whole. Returns
 /// the rays traced and whether a pixel is left that is not done.
 /// Allocates nothing.
-pub(crate) fn resume_tiles<K: Kernel, S: Scene + ?Sized>(
+pub(crate) fn resume_tiles<K: Resumable, S: Scene + ?Sized>(
     kernel: &K,
     scene: &S,
     camera: &Camera,

@@ -10,8 +10,9 @@ use crate::error::Error;
 use crate::render::camera::Camera;
 use crate::render::framebuffer::Framebuffer;
 use crate::render::options::RenderOptions;
+use crate::render::parallel::render_parallel_with_progress;
 use crate::render::rounds::{in_rounds, PixelSamples, RoundsDone};
-use crate::render::shader::{FrameJob, Kernel, Shader};
+use crate::render::shader::{Resumable, RoundsJob, Shader};
 use crate::render::stats::{RayStats, Rect};
 use crate::render::tiles::{resume_tiles, TILE};
 use crate::scene::Scene;
@@ -65,17 +66,33 @@ where
     }
     let pixels = &mut pixels[..required];
     pixels.fill(PixelSamples::default());
-    Ok(
-        Shader::new(options, camera, scene.materials()).dispatch(FrameInRounds {
-            scene,
-            camera,
-            region,
-            frame,
-            pixels,
-            rows_done,
-            keep_going,
-        }),
-    )
+    let shader = Shader::new(options, camera, scene.materials());
+    let job = FrameInRounds {
+        scene,
+        camera,
+        region,
+        frame,
+        pixels,
+        rows_done,
+        keep_going,
+    };
+    Ok(match shader.dispatch_rounds(job) {
+        Ok(done) => done,
+        // Not path-traced: one pass, one round.
+        Err(job) => {
+            job.pixels.fill(PixelSamples {
+                done: true,
+                ..PixelSamples::default()
+            });
+            let rays =
+                render_parallel_with_progress(scene, camera, options, region, frame, rows_done)?;
+            RoundsDone {
+                rays,
+                rounds: 1,
+                complete: true,
+            }
+        }
+    })
 }
 
 /// A threaded frame in rounds: one task per band of [`TILE`] rows a
@@ -90,7 +107,7 @@ struct FrameInRounds<'a, S: ?Sized, P: ?Sized, F> {
     keep_going: F,
 }
 
-impl<S, P, F> FrameJob for FrameInRounds<'_, S, P, F>
+impl<S, P, F> RoundsJob for FrameInRounds<'_, S, P, F>
 where
     S: Scene + Sync + ?Sized,
     P: Fn(u32) + Sync + ?Sized,
@@ -98,7 +115,7 @@ where
 {
     type Output = RoundsDone;
 
-    fn run<K: Kernel>(self, kernel: &K) -> RoundsDone {
+    fn run<K: Resumable>(self, kernel: &K) -> RoundsDone {
         let FrameInRounds {
             scene,
             camera,

@@ -145,13 +145,23 @@ pub(crate) trait Kernel: Sync {
         memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats);
 
+    /// Whether the kernel's primary rays use a tile's clear distance (the
+    /// debug view walks from the camera to show every box).
+    fn uses_beam(&self) -> bool {
+        true
+    }
+}
+
+/// A kernel whose pixels take their samples in rounds: the path tracer.
+/// (The face-shaded looks take theirs in one pass: a frame of them is
+/// one round, rendered as usual.)
+pub(crate) trait Resumable: Kernel {
     /// Pixel `(x, y)` continued from `pixel` to the end of round `round`
     /// (from 1) of a render in rounds: its packed color, `None` when it
-    /// was already done (nothing traced), and the rays traced. Kernels
-    /// that take all their samples at once do so in round 1, then are
-    /// done; the path tracer takes [`crate::render::rounds::Rounds`]'
-    /// samples per round. The same `t_start` and `memory` rules as
-    /// [`Kernel::pixel`].
+    /// was already done (nothing traced), and the rays traced; after
+    /// round `n` it is the one-pass pixel of at most
+    /// [`crate::render::rounds::Rounds`]' samples after `n` rounds. The
+    /// same `t_start` and `memory` rules as [`Kernel::pixel`].
     #[allow(clippy::too_many_arguments)]
     fn resume<'s, S: Scene + ?Sized>(
         &self,
@@ -162,21 +172,16 @@ pub(crate) trait Kernel: Sync {
         memory: &mut WalkMemory<'s>,
         pixel: &mut PixelSamples,
         round: u32,
-    ) -> (Option<u32>, RayStats) {
-        let _ = round;
-        if pixel.done {
-            return (None, RayStats::default());
-        }
-        pixel.done = true;
-        let (rgba, stats) = self.pixel(scene, x, y, t_start, memory);
-        (Some(rgba), stats)
-    }
+    ) -> (Option<u32>, RayStats);
+}
 
-    /// Whether the kernel's primary rays use a tile's clear distance (the
-    /// debug view walks from the camera to show every box).
-    fn uses_beam(&self) -> bool {
-        true
-    }
+/// Something done to a frame's pixels in rounds, with a kernel that
+/// resumes them.
+pub(crate) trait RoundsJob {
+    /// What the job returns.
+    type Output;
+    /// Does the job with `kernel`.
+    fn run<K: Resumable>(self, kernel: &K) -> Self::Output;
 }
 
 impl Shader<'_, '_> {
