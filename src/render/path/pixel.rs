@@ -70,7 +70,11 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
 
     /// Takes the pixel's next samples, in order, until it has `until` of
     /// them or is done (all its samples, or the adaptive rule says so),
-    /// counting each into `pixel`; returns the rays traced.
+    /// counting each into `pixel`; returns the rays traced. Not inlined:
+    /// the one-pass and the round-by-round pixel share one copy of the
+    /// sampling loop per kernel and storage (a call per pixel, against a
+    /// path per sample).
+    #[inline(never)]
     fn take_samples<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
