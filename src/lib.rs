@@ -54,7 +54,9 @@
 //! - `path` (default): the path tracer, the look ([`Look::Path`]) of scenes
 //!   with metal, glass or emitters and of [`Lighting::path_trace`]. Without
 //!   it those frames get the face-shaded look, every material shaded as
-//!   diffuse, and the [`EffectPlan`]'s description says so.
+//!   diffuse, and the [`EffectPlan`]'s description says so. Its frames
+//!   may take their samples in rounds a caller stops between
+//!   ([`render_region_in_rounds`], [`Rounds`]; a time budget).
 //! - `effect-kernels` (default): one pixel kernel compiled per set of
 //!   effects, so an effect that is off costs nothing per ray. Without it
 //!   each look has one kernel that tests the effects per pixel: the same
