@@ -125,6 +125,21 @@ pub struct PixelSamples {
 }
 
 impl PixelSamples {
+    /// A pixel no round samples: one rendered in one pass.
+    pub(crate) fn finished() -> PixelSamples {
+        PixelSamples {
+            done: true,
+            #[cfg(feature = "path")]
+            taken: 0,
+            #[cfg(feature = "path")]
+            hits: 0,
+            #[cfg(feature = "path")]
+            sum: Vec3::ZERO,
+            #[cfg(feature = "path")]
+            tally: Tally::default(),
+        }
+    }
+
     /// Whether the pixel has all its samples: no later round changes it.
     #[must_use]
     pub fn is_done(&self) -> bool {
@@ -148,6 +163,7 @@ pub struct RoundsDone {
 /// Runs `round(n)` for `n = 1, 2, ...` (each returning its rays and
 /// whether a pixel is left that is not done) until no pixel is left or
 /// `keep_going(n)`, asked after round `n`, says no: round 1 always runs.
+#[cfg(feature = "path")]
 pub(crate) fn in_rounds(
     mut round: impl FnMut(u32) -> (RayStats, bool),
     mut keep_going: impl FnMut(u32) -> bool,

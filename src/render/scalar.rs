@@ -7,10 +7,16 @@
 use crate::error::Error;
 use crate::render::camera::Camera;
 use crate::render::options::RenderOptions;
-use crate::render::rounds::{in_rounds, PixelSamples, RoundsDone};
-use crate::render::shader::{FrameJob, Kernel, Resumable, RoundsJob, Shader};
+#[cfg(feature = "path")]
+use crate::render::rounds::in_rounds;
+use crate::render::rounds::{PixelSamples, RoundsDone};
+use crate::render::shader::{FrameJob, Kernel, Shader};
+#[cfg(feature = "path")]
+use crate::render::shader::{Resumable, RoundsJob};
 use crate::render::stats::{RayStats, Rect};
-use crate::render::tiles::{render_tiles, resume_tiles};
+use crate::render::tiles::render_tiles;
+#[cfg(feature = "path")]
+use crate::render::tiles::resume_tiles;
 use crate::scene::Scene;
 use crate::scene::WalkMemory;
 
@@ -167,39 +173,40 @@ pub fn render_region_in_rounds<S: Scene + ?Sized>(
     let pixels = &mut pixels[..required];
     pixels.fill(PixelSamples::default());
     let shader = Shader::new(options, camera, scene.materials());
-    let job = RegionInRounds {
+    let out = &mut out[..required];
+    // Path-traced: in rounds. (Only the path tracer samples in rounds.)
+    #[cfg(feature = "path")]
+    let (out, pixels) = match shader.dispatch_rounds(RegionInRounds {
         scene,
         camera,
         rect: region,
-        out: &mut out[..required],
+        out,
         pixels,
         keep_going,
+    }) {
+        Ok(done) => return Ok(done),
+        Err(job) => (job.out, job.pixels),
     };
-    Ok(match shader.dispatch_rounds(job) {
-        Ok(done) => done,
-        // Not path-traced: one pass, one round.
-        Err(job) => {
-            job.pixels.fill(PixelSamples {
-                done: true,
-                ..PixelSamples::default()
-            });
-            let rays = shader.dispatch(Tiles {
-                scene,
-                camera,
-                rect: region,
-                out: job.out,
-            });
-            RoundsDone {
-                rays,
-                rounds: 1,
-                complete: true,
-            }
-        }
+    #[cfg(not(feature = "path"))]
+    let _ = keep_going;
+    // Not path-traced: one pass, one round.
+    pixels.fill(PixelSamples::finished());
+    let rays = shader.dispatch(Tiles {
+        scene,
+        camera,
+        rect: region,
+        out,
+    });
+    Ok(RoundsDone {
+        rays,
+        rounds: 1,
+        complete: true,
     })
 }
 
 /// The pixels of `rect` in rounds, into `out` (row-major, stride
 /// `rect.width`), each pixel's state in `pixels` (the same layout).
+#[cfg(feature = "path")]
 struct RegionInRounds<'a, S: ?Sized, F> {
     scene: &'a S,
     camera: &'a Camera,
@@ -209,6 +216,7 @@ struct RegionInRounds<'a, S: ?Sized, F> {
     keep_going: F,
 }
 
+#[cfg(feature = "path")]
 impl<S: Scene + ?Sized, F: FnMut(u32) -> bool> RoundsJob for RegionInRounds<'_, S, F> {
     type Output = RoundsDone;
     fn run<K: Resumable>(self, kernel: &K) -> RoundsDone {

@@ -8,8 +8,11 @@
 //! byte-identical.
 
 use crate::render::camera::Camera;
+#[cfg(feature = "path")]
 use crate::render::rounds::PixelSamples;
-use crate::render::shader::{Kernel, Resumable};
+use crate::render::shader::Kernel;
+#[cfg(feature = "path")]
+use crate::render::shader::Resumable;
 use crate::render::stats::{RayStats, Rect};
 use crate::scene::Scene;
 use crate::scene::WalkMemory;
@@ -67,6 +70,7 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
 /// samples. A tile whose pixels are all done is skipped whole. Returns
 /// the rays traced and whether a pixel is left that is not done.
 /// Allocates nothing.
+#[cfg(feature = "path")]
 pub(crate) fn resume_tiles<K: Resumable, S: Scene + ?Sized>(
     kernel: &K,
     scene: &S,
@@ -107,6 +111,7 @@ pub(crate) fn resume_tiles<K: Resumable, S: Scene + ?Sized>(
 
 /// One tile: its pixels' offsets inside the rectangle, `dx0..dx1` by
 /// `dy0..dy1`.
+#[cfg(feature = "path")]
 #[derive(Clone, Copy)]
 struct Tile {
     dx0: u32,
@@ -115,6 +120,7 @@ struct Tile {
     dy1: u32,
 }
 
+#[cfg(feature = "path")]
 impl Tile {
     /// The tile's pixel offsets, row-major.
     fn offsets(self) -> impl Iterator<Item = (u32, u32)> {
@@ -125,6 +131,7 @@ impl Tile {
 /// The tiles of `rect`, row-major. Offsets inside the rectangle, so that
 /// no sum passes u32::MAX for a rectangle that reaches the last pixel of
 /// the largest frame.
+#[cfg(feature = "path")]
 fn tiles_of(rect: Rect) -> impl Iterator<Item = Tile> {
     (0..rect.height)
         .step_by(TILE as usize)
@@ -141,6 +148,7 @@ fn tiles_of(rect: Rect) -> impl Iterator<Item = Tile> {
 
 /// The distance before which no primary ray of `tile` (of `rect`) hits
 /// anything, for a kernel that uses it; 0 otherwise.
+#[cfg(feature = "path")]
 fn clear_distance<K: Kernel, S: Scene + ?Sized>(
     kernel: &K,
     scene: &S,

@@ -3,7 +3,9 @@
 //! ([`crate::render::rounds`]), and the caller's predicate is asked on the
 //! calling thread between rounds, when every band of the round is done.
 
+#[cfg(feature = "path")]
 use rayon::iter::{IndexedParallelIterator, ParallelIterator};
+#[cfg(feature = "path")]
 use rayon::slice::ParallelSliceMut;
 
 use crate::error::Error;
@@ -11,9 +13,15 @@ use crate::render::camera::Camera;
 use crate::render::framebuffer::Framebuffer;
 use crate::render::options::RenderOptions;
 use crate::render::parallel::render_parallel_with_progress;
-use crate::render::rounds::{in_rounds, PixelSamples, RoundsDone};
+#[cfg(feature = "path")]
+use crate::render::rounds::in_rounds;
+use crate::render::rounds::{PixelSamples, RoundsDone};
+#[cfg(feature = "path")]
 use crate::render::shader::{Resumable, RoundsJob, Shader};
-use crate::render::stats::{RayStats, Rect};
+#[cfg(feature = "path")]
+use crate::render::stats::RayStats;
+use crate::render::stats::Rect;
+#[cfg(feature = "path")]
 use crate::render::tiles::resume_tiles;
 use crate::scene::Scene;
 
@@ -66,32 +74,30 @@ where
     }
     let pixels = &mut pixels[..required];
     pixels.fill(PixelSamples::default());
-    let shader = Shader::new(options, camera, scene.materials());
-    let job = FrameInRounds {
-        scene,
-        camera,
-        region,
-        frame,
-        pixels,
-        rows_done,
-        keep_going,
-    };
-    Ok(match shader.dispatch_rounds(job) {
-        Ok(done) => done,
-        // Not path-traced: one pass, one round.
-        Err(job) => {
-            job.pixels.fill(PixelSamples {
-                done: true,
-                ..PixelSamples::default()
-            });
-            let rays =
-                render_parallel_with_progress(scene, camera, options, region, frame, rows_done)?;
-            RoundsDone {
-                rays,
-                rounds: 1,
-                complete: true,
-            }
-        }
+    // Path-traced: in rounds. (Only the path tracer samples in rounds.)
+    #[cfg(feature = "path")]
+    let pixels =
+        match Shader::new(options, camera, scene.materials()).dispatch_rounds(FrameInRounds {
+            scene,
+            camera,
+            region,
+            frame,
+            pixels,
+            rows_done,
+            keep_going,
+        }) {
+            Ok(done) => return Ok(done),
+            Err(job) => job.pixels,
+        };
+    #[cfg(not(feature = "path"))]
+    let _ = keep_going;
+    // Not path-traced: one pass, one round.
+    pixels.fill(PixelSamples::finished());
+    let rays = render_parallel_with_progress(scene, camera, options, region, frame, rows_done)?;
+    Ok(RoundsDone {
+        rays,
+        rounds: 1,
+        complete: true,
     })
 }
 
@@ -101,10 +107,12 @@ where
 /// render's bands; their tiles are 16 x 4 (any tiling gives the same
 /// pixels). On study.vox at 320x180 the rounds' CPU time is the one-pass
 /// render's (2.2 s on one thread of the project's 2-core VM, both ways).
+#[cfg(feature = "path")]
 const BAND: u32 = 4;
 
 /// A threaded frame in rounds: one task per band of [`BAND`] rows a
 /// round, each with its band's pixel states.
+#[cfg(feature = "path")]
 struct FrameInRounds<'a, S: ?Sized, P: ?Sized, F> {
     scene: &'a S,
     camera: &'a Camera,
@@ -115,6 +123,7 @@ struct FrameInRounds<'a, S: ?Sized, P: ?Sized, F> {
     keep_going: F,
 }
 
+#[cfg(feature = "path")]
 impl<S, P, F> RoundsJob for FrameInRounds<'_, S, P, F>
 where
     S: Scene + Sync + ?Sized,

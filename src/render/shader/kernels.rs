@@ -18,9 +18,9 @@ use crate::render::rays::{around, primary, secondary};
 use crate::render::rounds::PixelSamples;
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{face_index, fog_blend, lit, pack, pack_mean, sky, FLAT_SKY};
+use crate::render::shader::{FrameJob, Kernel, Shader};
 #[cfg(feature = "path")]
-use crate::render::shader::Resumable;
-use crate::render::shader::{FrameJob, Kernel, RoundsJob, Shader};
+use crate::render::shader::{Resumable, RoundsJob};
 use crate::render::stats::RayStats;
 use crate::scene::WalkMemory;
 use crate::scene::{Reach, Scene};
@@ -114,8 +114,8 @@ impl<'m> Shader<'_, 'm> {
     /// the scene holds, when the frame is path-traced; hands the job back
     /// otherwise (a face-shaded frame is one pass: its caller renders it
     /// as usual, and no round code is compiled for its kernels).
+    #[cfg(feature = "path")]
     pub(crate) fn dispatch_rounds<J: RoundsJob>(&self, job: J) -> Result<J::Output, J> {
-        #[cfg(feature = "path")]
         if let Some(setup) = &self.path {
             return Ok(with_path_kernel!(self.camera, setup, |kernel| job.run(kernel)));
         }

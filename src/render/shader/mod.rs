@@ -33,6 +33,7 @@ use crate::render::options::{Background, RenderOptions};
 use crate::render::path::PathSetup;
 #[cfg(feature = "path")]
 use crate::render::plan::{EffectPlan, Look};
+#[cfg(feature = "path")]
 use crate::render::rounds::PixelSamples;
 use crate::render::shade::{face_weights, pack};
 use crate::render::stats::RayStats;
@@ -155,6 +156,7 @@ pub(crate) trait Kernel: Sync {
 /// A kernel whose pixels take their samples in rounds: the path tracer.
 /// (The face-shaded looks take theirs in one pass: a frame of them is
 /// one round, rendered as usual.)
+#[cfg(feature = "path")]
 pub(crate) trait Resumable: Kernel {
     /// Pixel `(x, y)` continued from `pixel` to the end of round `round`
     /// (from 1) of a render in rounds: its packed color, `None` when it
@@ -177,6 +179,7 @@ pub(crate) trait Resumable: Kernel {
 
 /// Something done to a frame's pixels in rounds, with a kernel that
 /// resumes them.
+#[cfg(feature = "path")]
 pub(crate) trait RoundsJob {
     /// What the job returns.
     type Output;
