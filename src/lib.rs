@@ -54,7 +54,9 @@
 //! - `path` (default): the path tracer, the look ([`Look::Path`]) of scenes
 //!   with metal, glass or emitters and of [`Lighting::path_trace`]. Without
 //!   it those frames get the face-shaded look, every material shaded as
-//!   diffuse, and the [`EffectPlan`]'s description says so.
+//!   diffuse, and the [`EffectPlan`]'s description says so. Its frames
+//!   may take their samples in rounds a caller stops between
+//!   ([`render_region_in_rounds`], [`Rounds`]; a time budget).
 //! - `effect-kernels` (default): one pixel kernel compiled per set of
 //!   effects, so an effect that is off costs nothing per ray. Without it
 //!   each look has one kernel that tests the effects per pixel: the same
@@ -105,7 +107,10 @@ pub use render::options::{
     Background, Bounces, Fog, Lighting, Occlusion, RenderOptions, DEFAULT_SUN,
 };
 pub use render::plan::{EffectPlan, Look};
-pub use render::scalar::{render, render_pixel, render_region, render_span};
+pub use render::rounds::{PixelSamples, Rounds, RoundsDone, UNIFORM_ROUND};
+pub use render::scalar::{
+    render, render_pixel, render_region, render_region_in_rounds, render_span,
+};
 pub use render::shade::{pack, shade, sky, unpack, FLAT_SKY, SKY_HORIZON, SKY_ZENITH};
 pub use render::stats::{RayStats, Rect};
 pub use render::view::{Orbit, Projection, ViewPreset};
@@ -140,6 +145,8 @@ pub use io::png::{decode_png, encode_png, encode_png_with_text, read_png, write_
 pub use render::framebuffer::Framebuffer;
 #[cfg(feature = "rayon")]
 pub use render::parallel::pixels::{ParPixels, PixelRef, Pixels};
+#[cfg(feature = "rayon")]
+pub use render::parallel::rounds::render_parallel_in_rounds;
 #[cfg(feature = "rayon")]
 pub use render::parallel::{render_parallel, render_parallel_with_progress};
 

@@ -8,21 +8,26 @@
 
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
-    render, Camera, CameraSettings, DenseScene, EffectPlan, FnSource, Fog, IAabb, Lighting, Look,
-    Material, Materials, Palette, RenderOptions, Scene, WithMaterials,
+    render, render_region_in_rounds, Camera, CameraSettings, DenseScene, EffectPlan, FnSource, Fog,
+    IAabb, Lighting, Look, Material, Materials, Palette, PixelSamples, Rect, RenderOptions, Rounds,
+    Scene, WithMaterials,
 };
 
-/// The pixels of `scene`'s frame under `options`.
-fn frame<S: Scene>(scene: &S, options: &RenderOptions) -> Vec<u32> {
-    let camera = Camera::new(CameraSettings {
+/// The 32x24 camera of these frames.
+fn camera() -> Camera {
+    Camera::new(CameraSettings {
         width: 32,
         height: 24,
         lookfrom: Vec3::new(6.0, 9.0, 14.0),
         ..CameraSettings::default()
     })
-    .unwrap();
+    .unwrap()
+}
+
+/// The pixels of `scene`'s frame under `options`.
+fn frame<S: Scene>(scene: &S, options: &RenderOptions) -> Vec<u32> {
     let mut pixels = vec![0; 32 * 24];
-    render(scene, &camera, options, &mut pixels).unwrap();
+    render(scene, &camera(), options, &mut pixels).unwrap();
     pixels
 }
 
@@ -81,4 +86,23 @@ fn metal_glass_and_emitters_are_shaded_as_diffuse_and_the_plan_says_so() {
     let shaded = frame(&storage, &asked);
     assert!(frame(&scene, &asked) == shaded);
     assert!(frame(&storage, &all_diffuse) == shaded);
+
+    // A render in rounds is the one pass: one round, every pixel done,
+    // and the predicate never asked.
+    let plan = EffectPlan::new(&all_diffuse, None);
+    assert_eq!(Rounds::of(&plan).most, 1);
+    let mut out = vec![0; 32 * 24];
+    let mut state = vec![PixelSamples::default(); 32 * 24];
+    let done = render_region_in_rounds(
+        &scene,
+        &camera(),
+        &all_diffuse,
+        Rect::full(&camera()),
+        &mut out,
+        &mut state,
+        |_| panic!("asked after the only round"),
+    )
+    .unwrap();
+    assert!(done.complete && done.rounds == 1, "{done:?}");
+    assert!(out == shaded && state.iter().all(PixelSamples::is_done));
 }

@@ -12,6 +12,10 @@
 //! `path`) instead of face shading; its pixels may sample until their own
 //! noise estimate is low enough ([`adaptive`]).
 //!
+//! A frame may also take its samples in [`rounds`] over the whole frame,
+//! stopped between rounds by a caller's predicate (a time budget): the
+//! frame after `n` rounds is the one-pass frame of options that say so.
+//!
 //! One function, `render_pixel`, defines every pixel, so the scalar render,
 //! any crop, and the threaded render over the atomic [`framebuffer`]
 //! (feature `std`) with its parallel pixel iterator ([`parallel`], feature
@@ -30,6 +34,7 @@ pub(crate) mod parallel;
 pub(crate) mod path;
 pub(crate) mod plan;
 pub(crate) mod rays;
+pub(crate) mod rounds;
 pub(crate) mod sampling;
 pub(crate) mod scalar;
 pub(crate) mod shade;

@@ -7,9 +7,16 @@
 use crate::error::Error;
 use crate::render::camera::Camera;
 use crate::render::options::RenderOptions;
+#[cfg(feature = "path")]
+use crate::render::rounds::in_rounds;
+use crate::render::rounds::{PixelSamples, RoundsDone};
 use crate::render::shader::{FrameJob, Kernel, Shader};
+#[cfg(feature = "path")]
+use crate::render::shader::{Resumable, RoundsJob};
 use crate::render::stats::{RayStats, Rect};
 use crate::render::tiles::render_tiles;
+#[cfg(feature = "path")]
+use crate::render::tiles::resume_tiles;
 use crate::scene::Scene;
 use crate::scene::WalkMemory;
 
@@ -132,4 +139,103 @@ pub fn render<S: Scene + ?Sized>(
     out: &mut [u32],
 ) -> Result<RayStats, Error> {
     render_region(scene, camera, options, Rect::full(camera), out)
+}
+
+/// Renders the crop `region` into `out` as [`render_region`] does, its
+/// samples taken in rounds over the whole crop
+/// ([`crate::render::rounds`]): after each round every pixel of `out`
+/// holds its value so far, and `keep_going(n)`, asked after round `n`
+/// while a pixel is left that is not done, says whether round `n + 1`
+/// begins (round 1 always runs). The crop after `n` rounds is byte for
+/// byte [`render_region`]'s with [`crate::Rounds::options_after`] `n`,
+/// and with every round taken it is [`render_region`]'s own.
+///
+/// `pixels` is the state each pixel keeps between rounds, at least one
+/// per pixel of `region` (overwritten: no need to clear it). Single-
+/// threaded; allocates nothing.
+pub fn render_region_in_rounds<S: Scene + ?Sized>(
+    scene: &S,
+    camera: &Camera,
+    options: &RenderOptions,
+    region: Rect,
+    out: &mut [u32],
+    pixels: &mut [PixelSamples],
+    keep_going: impl FnMut(u32) -> bool,
+) -> Result<RoundsDone, Error> {
+    region.validate(camera)?;
+    options.validate()?;
+    let required = region.area()?;
+    for actual in [out.len(), pixels.len()] {
+        if actual < required {
+            return Err(Error::BufferTooSmall { required, actual });
+        }
+    }
+    let pixels = &mut pixels[..required];
+    pixels.fill(PixelSamples::default());
+    let shader = Shader::new(options, camera, scene.materials());
+    let out = &mut out[..required];
+    // Path-traced: in rounds. (Only the path tracer samples in rounds.)
+    #[cfg(feature = "path")]
+    let (out, pixels) = match shader.dispatch_rounds(RegionInRounds {
+        scene,
+        camera,
+        rect: region,
+        out,
+        pixels,
+        keep_going,
+    }) {
+        Ok(done) => return Ok(done),
+        Err(job) => (job.out, job.pixels),
+    };
+    #[cfg(not(feature = "path"))]
+    let _ = keep_going;
+    // Not path-traced: one pass, one round.
+    pixels.fill(PixelSamples::finished());
+    let rays = shader.dispatch(Tiles {
+        scene,
+        camera,
+        rect: region,
+        out,
+    });
+    Ok(RoundsDone {
+        rays,
+        rounds: 1,
+        complete: true,
+    })
+}
+
+/// The pixels of `rect` in rounds, into `out` (row-major, stride
+/// `rect.width`), each pixel's state in `pixels` (the same layout).
+#[cfg(feature = "path")]
+struct RegionInRounds<'a, S: ?Sized, F> {
+    scene: &'a S,
+    camera: &'a Camera,
+    rect: Rect,
+    out: &'a mut [u32],
+    pixels: &'a mut [PixelSamples],
+    keep_going: F,
+}
+
+#[cfg(feature = "path")]
+impl<S: Scene + ?Sized, F: FnMut(u32) -> bool> RoundsJob for RegionInRounds<'_, S, F> {
+    type Output = RoundsDone;
+    fn run<K: Resumable>(self, kernel: &K) -> RoundsDone {
+        let RegionInRounds {
+            scene,
+            camera,
+            rect,
+            out,
+            pixels,
+            keep_going,
+        } = self;
+        let stride = rect.width as usize;
+        let round = |n| {
+            resume_tiles(kernel, scene, camera, rect, pixels, n, |dx, dy, rgba| {
+                if let Some(pixel) = out.get_mut(dy as usize * stride + dx as usize) {
+                    *pixel = rgba;
+                }
+            })
+        };
+        in_rounds(round, keep_going)
+    }
 }

@@ -8,7 +8,11 @@
 //! byte-identical.
 
 use crate::render::camera::Camera;
+#[cfg(feature = "path")]
+use crate::render::rounds::PixelSamples;
 use crate::render::shader::Kernel;
+#[cfg(feature = "path")]
+use crate::render::shader::Resumable;
 use crate::render::stats::{RayStats, Rect};
 use crate::scene::Scene;
 use crate::scene::WalkMemory;
@@ -57,4 +61,105 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
         }
     }
     stats
+}
+
+/// Continues every pixel of `rect` to the end of round `round` (from 1)
+/// with `kernel` ([`Resumable::resume`]), in the tiles of [`render_tiles`]:
+/// `pixels` holds each pixel's samples so far (row-major, stride
+/// `rect.width`), and `put(dx, dy, rgba)` hears each pixel that took
+/// samples. A tile whose pixels are all done is skipped whole. Returns
+/// the rays traced and whether a pixel is left that is not done.
+/// Allocates nothing.
+#[cfg(feature = "path")]
+pub(crate) fn resume_tiles<K: Resumable, S: Scene + ?Sized>(
+    kernel: &K,
+    scene: &S,
+    camera: &Camera,
+    rect: Rect,
+    pixels: &mut [PixelSamples],
+    round: u32,
+    mut put: impl FnMut(u32, u32, u32),
+) -> (RayStats, bool) {
+    let mut stats = RayStats::default();
+    let mut memory = WalkMemory::new();
+    let mut left = false;
+    let stride = rect.width as usize;
+    let index = |dx: u32, dy: u32| dy as usize * stride + dx as usize;
+    for tile in tiles_of(rect) {
+        let all_done = tile
+            .offsets()
+            .all(|(dx, dy)| pixels.get(index(dx, dy)).is_none_or(|p| p.done));
+        if all_done {
+            continue;
+        }
+        let t_start = clear_distance(kernel, scene, camera, rect, tile);
+        for (dx, dy) in tile.offsets() {
+            let Some(pixel) = pixels.get_mut(index(dx, dy)) else {
+                continue;
+            };
+            let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
+            let (rgba, rays) = kernel.resume(scene, x, y, t_start, &mut memory, pixel, round);
+            if let Some(rgba) = rgba {
+                put(dx, dy, rgba);
+            }
+            left |= !pixel.done;
+            stats += rays;
+        }
+    }
+    (stats, left)
+}
+
+/// One tile: its pixels' offsets inside the rectangle, `dx0..dx1` by
+/// `dy0..dy1`.
+#[cfg(feature = "path")]
+#[derive(Clone, Copy)]
+struct Tile {
+    dx0: u32,
+    dy0: u32,
+    dx1: u32,
+    dy1: u32,
+}
+
+#[cfg(feature = "path")]
+impl Tile {
+    /// The tile's pixel offsets, row-major.
+    fn offsets(self) -> impl Iterator<Item = (u32, u32)> {
+        (self.dy0..self.dy1).flat_map(move |dy| (self.dx0..self.dx1).map(move |dx| (dx, dy)))
+    }
+}
+
+/// The tiles of `rect`, row-major. Offsets inside the rectangle, so that
+/// no sum passes u32::MAX for a rectangle that reaches the last pixel of
+/// the largest frame.
+#[cfg(feature = "path")]
+fn tiles_of(rect: Rect) -> impl Iterator<Item = Tile> {
+    (0..rect.height)
+        .step_by(TILE as usize)
+        .flat_map(move |dy0| {
+            let dy1 = dy0 + TILE.min(rect.height - dy0);
+            (0..rect.width).step_by(TILE as usize).map(move |dx0| Tile {
+                dx0,
+                dy0,
+                dx1: dx0 + TILE.min(rect.width - dx0),
+                dy1,
+            })
+        })
+}
+
+/// The distance before which no primary ray of `tile` (of `rect`) hits
+/// anything, for a kernel that uses it; 0 otherwise.
+#[cfg(feature = "path")]
+fn clear_distance<K: Kernel, S: Scene + ?Sized>(
+    kernel: &K,
+    scene: &S,
+    camera: &Camera,
+    rect: Rect,
+    tile: Tile,
+) -> f32 {
+    let (x0, y0) = (rect.x.wrapping_add(tile.dx0), rect.y.wrapping_add(tile.dy0));
+    let (x1, y1) = (rect.x.wrapping_add(tile.dx1), rect.y.wrapping_add(tile.dy1));
+    // (A tile past u32::MAX, outside every frame, wraps: no beam.)
+    let beam = kernel.uses_beam() && x1 > x0 && y1 > y0;
+    let frustum = beam.then(|| camera.tile_frustum(x0, y0, x1, y1)).flatten();
+    frustum.map_or(0.0, |f| scene.clear_distance(&f))
 }

@@ -17,9 +17,9 @@ mod values;
 pub use farm::{StitchArgs, TileArgs};
 pub use plain::GivenFlags;
 pub use values::{
-    parse_background, parse_bytes, parse_distance, parse_orbit, parse_rect, parse_sun,
-    parse_threshold, parse_vec3, BackgroundArg, FormatArg, OrbitArg, ProjectionArg, QualityArg,
-    Sun, ViewArg,
+    parse_background, parse_bytes, parse_distance, parse_orbit, parse_rect, parse_seconds,
+    parse_sun, parse_threshold, parse_vec3, BackgroundArg, FormatArg, OrbitArg, ProjectionArg,
+    QualityArg, Sun, ViewArg,
 };
 
 /// Render the seeded Perlin terrain of the voxtrace paper, or a MagicaVoxel
@@ -187,6 +187,22 @@ pub struct Args {
     /// without --spp].
     #[arg(long, value_name = "X", value_parser = parse_threshold, allow_hyphen_values = true, conflicts_with = "spp")]
     pub noise_threshold: Option<f32>,
+
+    /// The most samples a pixel of an adaptively sampled path-traced scene
+    /// takes, 1 to 4096 (its first round no larger) [default: 64, final
+    /// 256].
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=4096), conflicts_with = "spp")]
+    pub max_spp: Option<u16>,
+
+    /// A time budget in seconds for the render of each path-traced frame
+    /// (not the build): its samples are taken in rounds over the whole
+    /// frame (16 per pixel, or the adaptive minimum), and a round begins
+    /// only if the time spent plus the last round's time is within the
+    /// budget; the first round always runs. The frame written is exactly
+    /// the one the flag `--stats` prints as `reproduce` (--spp N or
+    /// --max-spp N) renders without a limit. Not with --tiles.
+    #[arg(long, value_name = "SECONDS", value_parser = parse_seconds, allow_hyphen_values = true)]
+    pub time_limit: Option<std::time::Duration>,
 
     /// Effects and samples in one word: preview is the default look;
     /// final samples a path-traced scene adaptively to a lower noise

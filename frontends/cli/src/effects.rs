@@ -73,11 +73,13 @@ pub(crate) fn ignored_effects(asked: &RenderOptions) -> Vec<String> {
 }
 
 /// One note for each flag `given` that changes nothing for the camera
-/// `settings` and the output `format`.
+/// `settings`, the output `format` and the frame's `options` (as
+/// resolved: `--quality final` may have turned occlusion on).
 pub(crate) fn ignored_flags(
     given: &GivenFlags,
     settings: &CameraSettings,
     format: output::Format,
+    options: &RenderOptions,
 ) -> Vec<String> {
     let mut notes = Vec::new();
     if given.vox && given.seed {
@@ -86,8 +88,12 @@ pub(crate) fn ignored_flags(
     if given.vox && given.size {
         notes.push("--size sets the terrain's volume; a --vox scene has its own".to_string());
     }
-    if given.ao_distance && !given.ao {
-        notes.push("--ao-distance has no effect without --ao".to_string());
+    // (With --ao, a frame that ignores occlusion is noted for --ao.)
+    if given.ao_distance && !given.ao && options.occlusion.is_none() {
+        notes.push(
+            "--ao-distance has no effect without --ao (or --quality final on a face-shaded scene)"
+                .to_string(),
+        );
     }
     let orthographic = matches!(settings.projection, Projection::Orthographic { .. });
     if given.ortho_height && !orthographic {

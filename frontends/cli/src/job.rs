@@ -5,11 +5,14 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use voxtrace::{Background, Camera, CameraSettings, EffectPlan, RayStats, Rect, RenderOptions};
+use voxtrace::{
+    Background, Camera, CameraSettings, EffectPlan, RayStats, Rect, RenderOptions, RoundsDone,
+};
 use voxtrace_cli::atomic::AtomicFile;
-use voxtrace_cli::{on_threads, say, Backend};
+use voxtrace_cli::{on_threads, say, Backend, BuiltScene, Rendered, ROUND_STATE_BYTES};
 use voxtrace_flags::describe;
 
+use crate::budget::Budget;
 use crate::denoise_flag;
 use crate::farm::{self, TileJob};
 use crate::memory;
@@ -44,6 +47,9 @@ pub struct Job<'a> {
     pub tile: Option<&'a TileJob>,
     /// `--denoise`: every frame is denoised before it is written.
     pub denoise: bool,
+    /// `--time-limit` of a path-traced frame: each frame's samples taken
+    /// in rounds until the budget is spent.
+    pub budget: Option<Budget>,
 }
 
 /// What a run cost, for `--stats`.
@@ -62,6 +68,8 @@ pub struct Totals {
     pub denoise: Duration,
     /// The built storage's bytes.
     pub storage_bytes: usize,
+    /// The rounds each frame took, under `--time-limit`.
+    pub rounds: Vec<RoundsDone>,
 }
 
 impl Job<'_> {
@@ -88,7 +96,13 @@ impl Job<'_> {
         } else {
             0
         };
-        let encoder = encoder + denoise;
+        // A render in rounds keeps each pixel's samples between rounds.
+        let rounds = if self.budget.is_some() {
+            u128::from(pixels) * u128::from(ROUND_STATE_BYTES)
+        } else {
+            0
+        };
+        let encoder = encoder + denoise + rounds;
         let bounds = self.subject.bounds();
         let loaded = self.subject.loaded();
         memory::budget(self.backend, bounds, loaded, (pixels, encoder), max_memory)
@@ -161,6 +175,9 @@ impl Job<'_> {
             let (built, build, materials) = self.subject.build(self.backend, threaded)?;
             drop(spinner);
             let total_rows = region.height.saturating_mul(cameras.len() as u32);
+            // Every round of a render in rounds goes over the rows again.
+            let most = self.budget.map_or(1, |b| b.rounds.most);
+            let total_rows = total_rows.saturating_mul(most);
             let progress = Progress::rows(total_rows);
             let mut totals = Totals {
                 build,
@@ -170,15 +187,17 @@ impl Job<'_> {
                 encode: Duration::ZERO,
                 denoise: Duration::ZERO,
                 storage_bytes: built.scene().storage_bytes(),
+                rounds: Vec::new(),
             };
             for (frame, path) in cameras.iter().zip(paths) {
                 let camera = &frame.camera;
-                let rendered =
-                    built.render_with(materials, camera, region, self.options, threaded, &|rows| {
-                        progress.advance(rows);
-                    });
+                let advance = |rows| progress.advance(rows);
+                let rendered = self.render_one(&built, materials, camera, &advance);
                 let mut rendered = match rendered {
-                    Ok(r) => r,
+                    Ok((r, rounds)) => {
+                        totals.rounds.extend(rounds);
+                        r
+                    }
                     Err(e) => {
                         progress.finish();
                         return Err(e);
@@ -210,6 +229,39 @@ impl Job<'_> {
         })
     }
 
+    /// Renders one frame's `camera` of `built` with `materials`, in
+    /// rounds under a budget (then also the rounds it took), reporting
+    /// finished rows to `progress`.
+    fn render_one(
+        &self,
+        built: &BuiltScene,
+        materials: Option<voxtrace::SceneMaterials<'_>>,
+        camera: &Camera,
+        progress: &(dyn Fn(u32) + Sync),
+    ) -> Result<(Rendered, Option<RoundsDone>), String> {
+        let (region, options) = (self.region, self.options);
+        let threaded = self.threads != Some(1);
+        match &self.budget {
+            None => built
+                .render_with(materials, camera, region, options, threaded, progress)
+                .map(|r| (r, None)),
+            Some(budget) => {
+                let mut keep_going = budget.keep_going();
+                built
+                    .render_in_rounds(
+                        materials,
+                        camera,
+                        region,
+                        options,
+                        threaded,
+                        progress,
+                        &mut keep_going,
+                    )
+                    .map(|(r, done)| (r, Some(done)))
+            }
+        }
+    }
+
     /// Prints `--stats`: what the run cost, the `plan`'s effects, the
     /// scene's box, and the flags that make the first frame's `camera`
     /// (`--up` only when `explicit_up`).
@@ -228,6 +280,7 @@ impl Job<'_> {
             encode,
             denoise,
             storage_bytes,
+            ref rounds,
         } = *totals;
         // One camera ray per sample: what adaptive sampling spent.
         let samples_per_pixel = rays.primary_rays as f64 / pixels.max(1) as f64;
@@ -254,5 +307,10 @@ impl Job<'_> {
         say!("scene_min: {}", v(bounds.min));
         say!("scene_max: {}", v(bounds.max));
         say!("camera: {}", describe(camera, explicit_up));
+        if let Some(budget) = &self.budget {
+            for line in budget.stats(rounds) {
+                say!("{line}");
+            }
+        }
     }
 }

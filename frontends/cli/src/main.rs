@@ -5,6 +5,7 @@
 //! problem.
 
 mod args;
+mod budget;
 mod denoise_flag;
 mod effects;
 mod farm;
@@ -28,6 +29,7 @@ use voxtrace_cli::{export_vox, frame_path, terrain_box, turntable, FrameRange};
 use voxtrace_flags::Effects;
 
 use args::{Args, Command, GivenFlags, TileArgs};
+use budget::Budget;
 use effects::{ignored_effects, ignored_flags, materials_of, unused_in_path};
 use farm::TileJob;
 use job::{Frame, Job};
@@ -76,6 +78,13 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     let random_terrain = args.vox.is_none() && args.seed.is_none();
     farm::check_flags(&args.farm, random_terrain, args.frames)?;
     denoise_flag::check(args.denoise, args.farm.tiles.is_some())?;
+    if args.time_limit.is_some() && args.farm.tiles.is_some() {
+        return Err(
+            "--time-limit cannot cut a frame into --tiles: each task would stop after \
+             its own rounds; give every task the --spp or --max-spp a --stats run printed"
+                .into(),
+        );
+    }
     let subject = Subject::load(args.vox.as_deref(), args.seed, args.size)?;
     let explicit = Args::camera_given(matches);
     let flags = view::measured_default(args.camera_flags(), explicit, &subject, args.max_memory);
@@ -105,6 +114,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
         format,
         tile,
         denoise: args.denoise,
+        budget: Budget::of(args.time_limit, &plan),
     };
     job.check_memory(args.max_memory)?;
     let totals = job.render_all(&cameras, out, &paths)?;
@@ -234,13 +244,22 @@ fn notes(
     let mut notes = ignored_effects(options);
     if plan.look == Look::Path {
         notes.extend(unused_in_path(options));
-    } else if given.noise_threshold {
-        notes.push(
-            "the scene is not path-traced: --noise-threshold changes nothing (--spp sets its samples)"
-                .to_string(),
-        );
+    } else {
+        for (flag, given) in [
+            ("--noise-threshold", given.noise_threshold),
+            ("--max-spp", given.max_spp),
+        ] {
+            if given {
+                notes.push(format!(
+                    "the scene is not path-traced: {flag} changes nothing (--spp sets its samples)"
+                ));
+            }
+        }
     }
-    notes.extend(ignored_flags(given, settings, format));
+    if given.time_limit {
+        notes.extend(budget::unused_note(plan));
+    }
+    notes.extend(ignored_flags(given, settings, format, options));
     notes
 }
 

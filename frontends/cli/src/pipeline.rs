@@ -12,8 +12,9 @@ use clap::ValueEnum;
 use crate::units::human_bytes;
 use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{
-    render_parallel_with_progress, render_region, Camera, DenseScene, Error, Framebuffer, IAabb,
-    Node, OctreeScene, RayStats, Rect, RenderOptions, Scene, SceneMaterials, VoxelGenerator,
+    render_parallel_in_rounds, render_parallel_with_progress, render_region,
+    render_region_in_rounds, Camera, DenseScene, Error, Framebuffer, IAabb, Node, OctreeScene,
+    PixelSamples, RayStats, Rect, RenderOptions, RoundsDone, Scene, SceneMaterials, VoxelGenerator,
     VoxelSource, WithMaterials,
 };
 
@@ -194,7 +195,52 @@ impl BuiltScene {
             BuiltScene::Octree(scene) => job.shaded(scene, materials),
         }
     }
+
+    /// [`BuiltScene::render_with`], the samples taken in rounds over the
+    /// whole region (`voxtrace::render_region_in_rounds`, threaded or
+    /// not): `keep_going(n)`, asked after round `n` while a pixel has
+    /// samples left, says whether another round begins. `progress` hears
+    /// of the rows of every round. Returns the rounds taken beside the
+    /// frame, which is the one-pass frame of `voxtrace::Rounds`'
+    /// options after them.
+    ///
+    /// # Errors
+    /// As [`BuiltScene::render_with`]; also when the pixels' state
+    /// between rounds cannot be allocated.
+    #[allow(clippy::too_many_arguments)]
+    pub fn render_in_rounds(
+        &self,
+        materials: Option<SceneMaterials<'_>>,
+        camera: &Camera,
+        region: Rect,
+        options: &RenderOptions,
+        threaded: bool,
+        progress: &(dyn Fn(u32) + Sync),
+        keep_going: &mut dyn FnMut(u32) -> bool,
+    ) -> Result<(Rendered, RoundsDone), String> {
+        let job = RenderJob {
+            camera,
+            region,
+            options,
+            threaded,
+            progress,
+        };
+        match (self, materials) {
+            (BuiltScene::Dense(scene), None) => job.in_rounds(scene, keep_going),
+            (BuiltScene::Octree(scene), None) => job.in_rounds(scene, keep_going),
+            (BuiltScene::Dense(scene), Some(m)) => {
+                job.in_rounds(&WithMaterials::new(scene, m.table, m.emitters), keep_going)
+            }
+            (BuiltScene::Octree(scene), Some(m)) => {
+                job.in_rounds(&WithMaterials::new(scene, m.table, m.emitters), keep_going)
+            }
+        }
+    }
 }
+
+/// The bytes a render in rounds keeps per pixel between rounds, beside
+/// the frame ([`BuiltScene::render_in_rounds`]).
+pub const ROUND_STATE_BYTES: u64 = std::mem::size_of::<PixelSamples>() as u64;
 
 /// What [`BuiltScene::render_with`] renders, whatever the storage.
 struct RenderJob<'a> {
@@ -216,6 +262,68 @@ impl RenderJob<'_> {
             None => self.run(scene),
             Some(m) => self.run(&WithMaterials::new(scene, m.table, m.emitters)),
         }
+    }
+
+    /// Renders `scene` as it is, in rounds while `keep_going` says so.
+    fn in_rounds<S: Scene + Sync>(
+        &self,
+        scene: &S,
+        keep_going: &mut dyn FnMut(u32) -> bool,
+    ) -> Result<(Rendered, RoundsDone), String> {
+        let RenderJob {
+            camera,
+            region,
+            options,
+            threaded,
+            progress,
+        } = *self;
+        let no_memory = || {
+            format!(
+                "out of memory: cannot allocate a {}x{} image and its samples between rounds",
+                region.width, region.height
+            )
+        };
+        region.validate(camera).map_err(|e| e.to_string())?;
+        let area = region.area().map_err(|e| e.to_string())?;
+        let mut state = Vec::new();
+        state.try_reserve_exact(area).map_err(|_| no_memory())?;
+        state.resize(area, PixelSamples::default());
+        let started = Instant::now();
+        let (pixels, done) = if threaded {
+            let frame =
+                Framebuffer::new_parallel(region.width, region.height).map_err(|_| no_memory())?;
+            let done = render_parallel_in_rounds(
+                scene, camera, options, region, &frame, &mut state, progress, keep_going,
+            )
+            .map_err(|e| e.to_string())?;
+            (frame.into_pixels(), done)
+        } else {
+            let mut pixels = Vec::new();
+            pixels.try_reserve_exact(area).map_err(|_| no_memory())?;
+            pixels.resize(area, 0);
+            // The scalar path reports a round's rows when it ends.
+            let keep_going = |n| {
+                progress(region.height);
+                keep_going(n)
+            };
+            let done = render_region_in_rounds(
+                scene,
+                camera,
+                options,
+                region,
+                &mut pixels,
+                &mut state,
+                keep_going,
+            )
+            .map_err(|e| e.to_string())?;
+            (pixels, done)
+        };
+        let rendered = Rendered {
+            pixels,
+            rays: done.rays,
+            elapsed: started.elapsed(),
+        };
+        Ok((rendered, done))
     }
 
     /// Renders `scene` as it is.
@@ -270,5 +378,14 @@ impl RenderJob<'_> {
             rays,
             elapsed: started.elapsed(),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_pixel_keeps_36_bytes_between_rounds() {
+        // docs/cli.md says so; the memory check counts them.
+        assert_eq!(super::ROUND_STATE_BYTES, 36);
     }
 }

@@ -55,7 +55,10 @@ const FLAGS: &[(&str, &str)] = &[
     ("options.occlusion.distance", "--ao-distance"),
     ("options.occlusion", "--ao"),
     ("options.samples", "--spp"),
-    ("options.adaptive", "--noise-threshold, --quality or --spp"),
+    (
+        "options.adaptive",
+        "--noise-threshold, --max-spp, --quality or --spp",
+    ),
     ("options.fog", "--fog"),
     ("options.background", "--background"),
     ("options.lighting.bounces", "--bounces"),

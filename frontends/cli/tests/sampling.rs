@@ -129,3 +129,38 @@ fn quality_final_on_a_face_shaded_model_is_shadows_ao_16_spp_16() {
     assert_eq!(stat(&stats, "effects"), "flat");
     assert!(!stats.contains("ignoring"), "{stats}");
 }
+
+#[test]
+fn ao_distance_reaches_the_occlusion_of_quality_final() {
+    // --quality final turns occlusion on in a face-shaded scene: the
+    // distance given is its reach, and no note says otherwise.
+    let (final_4, stats) = render("final-ao4", &["--quality", "final", "--ao-distance", "4"]);
+    assert!(!stats.contains("--ao-distance"), "{stats}");
+    let (spelled, _) = render(
+        "spelled-ao4",
+        &[
+            "--shadows",
+            "--ao",
+            "16",
+            "--ao-distance",
+            "4",
+            "--spp",
+            "16",
+        ],
+    );
+    assert!(final_4 == spelled, "final does not reach --ao-distance 4");
+    let (final_8, _) = render("final-ao8", &["--quality", "final"]);
+    assert!(final_4 != final_8, "--ao-distance 4 changed nothing");
+    // Without occlusion the note stays: the plain look, and final on a
+    // path-traced scene (its light rays, no occlusion rays).
+    let note = "note: --ao-distance has no effect without --ao";
+    let (plain, stats) = render("plain-ao4", &["--ao-distance", "4"]);
+    assert!(stats.contains(note), "{stats}");
+    let (default, _) = render("plain", &[]);
+    assert!(plain == default);
+    let (_, stats) = render(
+        "path-final-ao4",
+        &["--bounces", "1", "--quality", "final", "--ao-distance", "4"],
+    );
+    assert!(stats.contains(note), "{stats}");
+}

@@ -23,6 +23,9 @@ pub struct Effects {
     pub shadows: bool,
     /// `--ao N` with `--ao-distance`.
     pub occlusion: Option<Occlusion>,
+    /// `--ao-distance`: also the reach of the occlusion `--quality final`
+    /// adds to a face-shaded scene without `--ao`.
+    pub ao_distance: f32,
     /// `--spp`, `--noise-threshold` and `--quality`.
     pub sampling: Sampling,
     /// `--fog`.
@@ -44,6 +47,7 @@ impl Default for Effects {
             sun: None,
             shadows: options.shadows,
             occlusion: options.occlusion,
+            ao_distance: Occlusion::DEFAULT_DISTANCE,
             sampling: Sampling::default(),
             fog: false,
             background: options.background,
@@ -116,6 +120,11 @@ pub fn render_options(
         emitters: m.emitters(),
     });
     let path_traced = EffectPlan::new(&options, materials).look == Look::Path;
-    quality::apply(&effects.sampling, path_traced, &mut options);
+    quality::apply(
+        &effects.sampling,
+        path_traced,
+        effects.ao_distance,
+        &mut options,
+    );
     options
 }

@@ -32,6 +32,8 @@ pub struct Sampling {
     pub spp: Option<u16>,
     /// `--noise-threshold`: adaptive sampling to this relative error.
     pub noise_threshold: Option<f32>,
+    /// `--max-spp`: adaptive sampling to at most this many samples.
+    pub max_spp: Option<u16>,
     /// `--quality`.
     pub quality: Quality,
 }
@@ -40,10 +42,17 @@ pub struct Sampling {
 /// face-shaded scene, its effects) as `sampling` asks, for a frame that is
 /// `path_traced` or not. `--spp N` is exactly N uniform samples; without
 /// it a path-traced frame samples adaptively, to `--noise-threshold` when
-/// given, and a face-shaded one takes 1 sample (16 under `final`, which
-/// also turns shadows on and occlusion on unless `--ao N` gave its own
-/// N); flat and debug looks get no effects.
-pub fn apply(sampling: &Sampling, path_traced: bool, options: &mut RenderOptions) {
+/// given and to at most `--max-spp` samples (its first round no larger),
+/// and a face-shaded one takes 1 sample (16 under `final`, which
+/// also turns shadows on and occlusion on, reaching `ao_distance`
+/// (`--ao-distance`), unless `--ao N` gave its own); flat and debug looks
+/// get no effects.
+pub fn apply(
+    sampling: &Sampling,
+    path_traced: bool,
+    ao_distance: f32,
+    options: &mut RenderOptions,
+) {
     let final_quality = sampling.quality == Quality::Final;
     if path_traced {
         options.samples = sampling.spp.unwrap_or(1);
@@ -55,9 +64,11 @@ pub fn apply(sampling: &Sampling, path_traced: bool, options: &mut RenderOptions
                 } else {
                     Adaptive::DEFAULT
                 };
+                let max = sampling.max_spp.unwrap_or(base.max_samples).max(1);
                 Some(Adaptive {
                     threshold: threshold.unwrap_or(base.threshold),
-                    ..base
+                    min_samples: base.min_samples.min(max),
+                    max_samples: max,
                 })
             }
         };
@@ -69,7 +80,7 @@ pub fn apply(sampling: &Sampling, path_traced: bool, options: &mut RenderOptions
         options.shadows = true;
         options.occlusion = options.occlusion.or(Some(Occlusion {
             rays: FINAL_AO_RAYS,
-            distance: Occlusion::DEFAULT_DISTANCE,
+            distance: ao_distance,
         }));
         options.samples = sampling.spp.unwrap_or(FINAL_SPP);
     } else {

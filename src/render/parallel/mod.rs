@@ -1,9 +1,11 @@
 //! The threaded renderer (feature `rayon`): the scalar tracer's tiles,
 //! one band of 16 rows per unit of work, written into the atomic
-//! framebuffer; and the framebuffer's own parallel pixel iterator
-//! (`pixels.rs`) for users' per-pixel work.
+//! framebuffer; the same in rounds over the whole frame (`rounds.rs`);
+//! and the framebuffer's own parallel pixel iterator (`pixels.rs`) for
+//! users' per-pixel work.
 
 pub(crate) mod pixels;
+pub(crate) mod rounds;
 
 use rayon::iter::{IndexedParallelIterator, IntoParallelIterator, ParallelIterator};
 

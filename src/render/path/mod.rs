@@ -4,7 +4,8 @@
 //! estimation toward the sun's disk and the emissive voxels at every
 //! diffuse hit (`direct.rs`), GGX reflection off metal (`bsdf.rs`) and
 //! Fresnel reflection and refraction through glass, walked voxel by voxel
-//! inside (`glass.rs`).
+//! inside (`glass.rs`). A pixel takes its samples in order, in one pass
+//! or resumed round by round (`pixel.rs`).
 //!
 //! The kinds of material the scene holds are `const` generics: a scene
 //! without glass compiles no refraction code, one without emitters samples
@@ -24,17 +25,18 @@
 pub(crate) mod bsdf;
 mod direct;
 mod glass;
+mod pixel;
 
 use glam::{IVec3, Vec3};
 
 use crate::geom::Ray;
 use crate::material::{MaterialKind, Materials};
-use crate::render::adaptive::{Adaptive, Tally};
+use crate::render::adaptive::Adaptive;
 use crate::render::camera::Camera;
 use crate::render::options::{Background, Bounces, Fog, RenderOptions};
 use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
-use crate::render::shade::{pack_mean, sky, to_u8, SKY_HORIZON};
+use crate::render::shade::{sky, SKY_HORIZON};
 use crate::render::stats::RayStats;
 use crate::scene::WalkMemory;
 use crate::scene::{Reach, Scene};
@@ -135,89 +137,6 @@ impl<'m> PathSetup<'m> {
 pub(crate) struct Path<'s, 'm, const GLASS: bool, const METAL: bool, const EMIT: bool> {
     pub(crate) camera: &'s Camera,
     pub(crate) setup: &'s PathSetup<'m>,
-}
-
-impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS, METAL, EMIT> {
-    /// Pixel `(x, y)`: the mean radiance of its samples, and the rays
-    /// traced (the kernel's `pixel`). With adaptive sampling the pixel
-    /// takes the samples `0, 1, ...` of the uniform sequence until its own
-    /// tally says it is done, so it is the uniform render's pixel when that
-    /// takes as many samples. Its camera rays walk with `memory`,
-    /// shared with the neighbouring pixels' camera rays; each later ray of
-    /// a path begins from the hit before it (where a walk begins, never
-    /// what it hits).
-    pub(crate) fn trace_pixel<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        x: u32,
-        y: u32,
-        t_start: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> (u32, RayStats) {
-        let adaptive = self.setup.adaptive;
-        let samples = match adaptive {
-            Some(a) => u32::from(a.max_samples.max(1)),
-            None => u32::from(self.setup.samples.max(1)),
-        };
-        // A single uniform sample is the pixel's center; adaptive samples
-        // are all offset, as a uniform frame's of several.
-        let centered = samples == 1 && adaptive.is_none();
-        let mut tally = Tally::default();
-        let mut taken = 0;
-        let mut sum = Vec3::ZERO;
-        let mut stats = RayStats::default();
-        // The background rules of the face-shaded look: a camera sample
-        // that misses shows the sky (the environment's radiance), the
-        // --background color, or nothing (alpha covers the hits).
-        let background = match self.setup.background {
-            Background::Color(c) => Some(c.as_vec3() * (1.0 / 255.0)),
-            Background::Sky | Background::Transparent => None,
-        };
-        let transparent = self.setup.background == Background::Transparent;
-        for s in 0..samples {
-            // The anti-aliasing offsets of the face-shaded look.
-            let ray = if centered {
-                self.camera.get_ray(x, y)
-            } else {
-                let offset = r2(s, pixel_key(x, y, 0));
-                self.camera
-                    .get_ray_at(x as f32 + offset.x, y as f32 + offset.y)
-            };
-            let mut rng = Rng {
-                x,
-                y,
-                sample: s,
-                event: 0,
-            };
-            let hits = stats.primary_hits;
-            let radiance = self.radiance(scene, &ray, t_start, memory, &mut rng, &mut stats);
-            let missed = stats.primary_hits == hits;
-            let radiance = match (missed, background) {
-                (true, Some(color)) => color,
-                (true, None) if transparent => Vec3::ZERO,
-                _ => radiance,
-            };
-            // A NaN from degenerate geometry is dropped, never averaged in.
-            let counted = if radiance.is_finite() {
-                radiance.clamp(Vec3::ZERO, Vec3::splat(MAX_RADIANCE))
-            } else {
-                Vec3::ZERO
-            };
-            sum += counted;
-            taken += 1;
-            if let Some(settings) = &adaptive {
-                // The noise that shows: a bright path past white changes
-                // nothing the pixel can display.
-                tally.add(counted.min(Vec3::ONE));
-                if tally.done(settings) {
-                    break;
-                }
-            }
-        }
-        let mean_of = |n: u32| to_u8(sum * (255.0 / n as f32));
-        let hits = stats.primary_hits as u32;
-        (pack_mean(taken, hits, transparent, mean_of), stats)
-    }
 }
 
 impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS, METAL, EMIT> {

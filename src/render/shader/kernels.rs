@@ -14,12 +14,51 @@ use crate::render::options::Background;
 #[cfg(feature = "path")]
 use crate::render::path::{Path, PathSetup};
 use crate::render::rays::{around, primary, secondary};
+#[cfg(feature = "path")]
+use crate::render::rounds::PixelSamples;
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{face_index, fog_blend, lit, pack, pack_mean, sky, FLAT_SKY};
 use crate::render::shader::{FrameJob, Kernel, Shader};
+#[cfg(feature = "path")]
+use crate::render::shader::{Resumable, RoundsJob};
 use crate::render::stats::RayStats;
 use crate::scene::WalkMemory;
 use crate::scene::{Reach, Scene};
+
+/// `$run` (a closure-like `|kernel| expr`) with the path tracer of
+/// `$camera` and `$setup` compiled for the material kinds the scene holds
+/// (one kernel, every kind on, without `effect-kernels`: the kinds a
+/// scene lacks never match, the same pixels).
+#[cfg(feature = "path")]
+macro_rules! with_path_kernel {
+    ($camera:expr, $setup:expr, |$kernel:ident| $run:expr) => {{
+        let (camera, setup) = ($camera, $setup);
+        if !cfg!(feature = "effect-kernels") {
+            let $kernel = &Path::<true, true, true> { camera, setup };
+            $run
+        } else {
+            let kinds = setup.materials.kinds();
+            with_path_kernel!(@match kinds, camera, setup, $kernel, $run,
+                (false, false, false),
+                (false, false, true),
+                (false, true, false),
+                (false, true, true),
+                (true, false, false),
+                (true, false, true),
+                (true, true, false),
+                (true, true, true))
+        }
+    }};
+    (@match $kinds:ident, $camera:ident, $setup:ident, $kernel:ident, $run:expr,
+        $(($g:literal, $m:literal, $e:literal)),*) => {
+        match ($kinds.glass, $kinds.metal, $kinds.emissive) {
+            $(($g, $m, $e) => {
+                let $kernel = &Path::<$g, $m, $e> { camera: $camera, setup: $setup };
+                $run
+            })*
+        }
+    };
+}
 
 impl<'m> Shader<'_, 'm> {
     /// Runs `job` with the kernel compiled for this frame's effects.
@@ -72,32 +111,22 @@ impl<'m> Shader<'_, 'm> {
     }
 
     /// Runs `job` with the path tracer compiled for the material kinds
+    /// the scene holds, when the frame is path-traced; hands the job back
+    /// otherwise (a face-shaded frame is one pass: its caller renders it
+    /// as usual, and no round code is compiled for its kernels).
+    #[cfg(feature = "path")]
+    pub(crate) fn dispatch_rounds<J: RoundsJob>(&self, job: J) -> Result<J::Output, J> {
+        if let Some(setup) = &self.path {
+            return Ok(with_path_kernel!(self.camera, setup, |kernel| job.run(kernel)));
+        }
+        Err(job)
+    }
+
+    /// Runs `job` with the path tracer compiled for the material kinds
     /// the scene holds.
     #[cfg(feature = "path")]
     fn dispatch_path<J: FrameJob>(&self, setup: &PathSetup<'m>, job: J) -> J::Output {
-        let camera = self.camera;
-        if !cfg!(feature = "effect-kernels") {
-            // The kinds a scene lacks never match: the same pixels.
-            return job.run(&Path::<true, true, true> { camera, setup });
-        }
-        let kinds = setup.materials.kinds();
-        macro_rules! path_kernels {
-            ($(($g:literal, $m:literal, $e:literal)),* $(,)?) => {
-                match (kinds.glass, kinds.metal, kinds.emissive) {
-                    $(($g, $m, $e) => job.run(&Path::<$g, $m, $e> { camera, setup }),)*
-                }
-            };
-        }
-        path_kernels!(
-            (false, false, false),
-            (false, false, true),
-            (false, true, false),
-            (false, true, true),
-            (true, false, false),
-            (true, false, true),
-            (true, true, false),
-            (true, true, true),
-        )
+        with_path_kernel!(self.camera, setup, |kernel| job.run(kernel))
     }
 }
 
@@ -115,6 +144,25 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Kernel
         memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats) {
         self.trace_pixel(scene, x, y, t_start, memory)
+    }
+}
+
+#[cfg(feature = "path")]
+impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Resumable
+    for Path<'_, '_, GLASS, METAL, EMIT>
+{
+    #[inline]
+    fn resume<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        x: u32,
+        y: u32,
+        t_start: f32,
+        memory: &mut WalkMemory<'s>,
+        pixel: &mut PixelSamples,
+        round: u32,
+    ) -> (Option<u32>, RayStats) {
+        self.resume_pixel(scene, (x, y), t_start, memory, pixel, round)
     }
 }
 

@@ -33,6 +33,8 @@ use crate::render::options::{Background, RenderOptions};
 use crate::render::path::PathSetup;
 #[cfg(feature = "path")]
 use crate::render::plan::{EffectPlan, Look};
+#[cfg(feature = "path")]
+use crate::render::rounds::PixelSamples;
 use crate::render::shade::{face_weights, pack};
 use crate::render::stats::RayStats;
 use crate::scene::Scene;
@@ -149,6 +151,40 @@ pub(crate) trait Kernel: Sync {
     fn uses_beam(&self) -> bool {
         true
     }
+}
+
+/// A kernel whose pixels take their samples in rounds: the path tracer.
+/// (The face-shaded looks take theirs in one pass: a frame of them is
+/// one round, rendered as usual.)
+#[cfg(feature = "path")]
+pub(crate) trait Resumable: Kernel {
+    /// Pixel `(x, y)` continued from `pixel` to the end of round `round`
+    /// (from 1) of a render in rounds: its packed color, `None` when it
+    /// was already done (nothing traced), and the rays traced; after
+    /// round `n` it is the one-pass pixel of at most
+    /// [`crate::render::rounds::Rounds`]' samples after `n` rounds. The
+    /// same `t_start` and `memory` rules as [`Kernel::pixel`].
+    #[allow(clippy::too_many_arguments)]
+    fn resume<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        x: u32,
+        y: u32,
+        t_start: f32,
+        memory: &mut WalkMemory<'s>,
+        pixel: &mut PixelSamples,
+        round: u32,
+    ) -> (Option<u32>, RayStats);
+}
+
+/// Something done to a frame's pixels in rounds, with a kernel that
+/// resumes them.
+#[cfg(feature = "path")]
+pub(crate) trait RoundsJob {
+    /// What the job returns.
+    type Output;
+    /// Does the job with `kernel`.
+    fn run<K: Resumable>(self, kernel: &K) -> Self::Output;
 }
 
 impl Shader<'_, '_> {

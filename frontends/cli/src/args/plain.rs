@@ -35,6 +35,10 @@ pub struct GivenFlags {
     pub transparent: bool,
     /// `--noise-threshold`.
     pub noise_threshold: bool,
+    /// `--max-spp`.
+    pub max_spp: bool,
+    /// `--time-limit`.
+    pub time_limit: bool,
 }
 
 impl Args {
@@ -97,9 +101,11 @@ impl Args {
                 rays,
                 distance: self.ao_distance,
             }),
+            ao_distance: self.ao_distance,
             sampling: Sampling {
                 spp: self.spp,
                 noise_threshold: self.noise_threshold,
+                max_spp: self.max_spp,
                 quality: self.quality.quality(),
             },
             fog: self.fog,
@@ -124,6 +130,8 @@ impl Args {
             perspective: self.projection == ProjectionArg::Perspective && given("projection"),
             transparent: self.background.0 == Background::Transparent,
             noise_threshold: self.noise_threshold.is_some(),
+            max_spp: self.max_spp.is_some(),
+            time_limit: self.time_limit.is_some(),
         }
     }
 }

@@ -207,6 +207,21 @@ pub fn parse_threshold(s: &str) -> Result<f32, String> {
     }
 }
 
+/// `--time-limit`: seconds, positive and finite (a fraction allowed), as
+/// a duration of at least a nanosecond (one beyond `Duration`'s range is
+/// its largest: no limit).
+pub fn parse_seconds(s: &str) -> Result<std::time::Duration, String> {
+    use std::time::Duration;
+    match s.trim().parse::<f64>() {
+        Ok(secs) if secs > 0.0 && secs.is_finite() => Ok(Duration::try_from_secs_f64(secs)
+            .unwrap_or(Duration::MAX)
+            .max(Duration::from_nanos(1))),
+        _ => Err(format!(
+            "'{s}' is not a time limit: a positive number of seconds, such as 30"
+        )),
+    }
+}
+
 /// `X,Y,W,H` in whole pixels.
 pub fn parse_rect(s: &str) -> Result<Rect, String> {
     let [x, y, width, height] = parse_numbers::<4, u32>(s, "four whole numbers X,Y,W,H")?;

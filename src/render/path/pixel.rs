@@ -1,0 +1,154 @@
+//! A path-traced pixel: its camera samples taken in order, each averaged
+//! in as it comes, in one pass or resumed round by round from the
+//! [`PixelSamples`] the caller keeps. Both run the same steps on the same
+//! numbers, so a pixel finished in rounds is the pixel of one pass.
+
+use glam::Vec3;
+
+use crate::render::options::Background;
+use crate::render::rounds::{samples_per_round, PixelSamples};
+use crate::render::sampling::{pixel_key, r2};
+use crate::render::shade::{pack_mean, to_u8};
+use crate::render::stats::RayStats;
+use crate::scene::{Scene, WalkMemory};
+
+use super::{Path, Rng, MAX_RADIANCE};
+
+impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS, METAL, EMIT> {
+    /// Pixel `(x, y)`: the mean radiance of its samples, and the rays
+    /// traced (the kernel's `pixel`). With adaptive sampling the pixel
+    /// takes the samples `0, 1, ...` of the uniform sequence until its own
+    /// tally says it is done, so it is the uniform render's pixel when that
+    /// takes as many samples. Its camera rays walk with `memory`,
+    /// shared with the neighbouring pixels' camera rays; each later ray of
+    /// a path begins from the hit before it (where a walk begins, never
+    /// what it hits).
+    pub(crate) fn trace_pixel<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        x: u32,
+        y: u32,
+        t_start: f32,
+        memory: &mut WalkMemory<'s>,
+    ) -> (u32, RayStats) {
+        let mut pixel = PixelSamples::default();
+        let stats = self.take_samples(scene, (x, y), t_start, memory, &mut pixel, u32::MAX);
+        (self.packed(&pixel), stats)
+    }
+
+    /// Pixel `(x, y)` continued from `pixel` to the end of round `round`
+    /// (from 1): its packed color, `None` when it was already done, and
+    /// the rays traced. After round `n` the pixel is the one-pass pixel of
+    /// at most `n` rounds' samples ([`crate::render::rounds::Rounds`]).
+    pub(crate) fn resume_pixel<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        (x, y): (u32, u32),
+        t_start: f32,
+        memory: &mut WalkMemory<'s>,
+        pixel: &mut PixelSamples,
+        round: u32,
+    ) -> (Option<u32>, RayStats) {
+        if pixel.done {
+            return (None, RayStats::default());
+        }
+        let setup = self.setup;
+        let per_round = samples_per_round(setup.adaptive.as_ref(), setup.samples);
+        let until = u32::from(per_round).saturating_mul(round.max(1));
+        let stats = self.take_samples(scene, (x, y), t_start, memory, pixel, until);
+        (Some(self.packed(pixel)), stats)
+    }
+
+    /// The samples the pixel has total: the adaptive maximum or the fixed
+    /// count.
+    fn samples(&self) -> u32 {
+        match self.setup.adaptive {
+            Some(a) => u32::from(a.max_samples.max(1)),
+            None => u32::from(self.setup.samples.max(1)),
+        }
+    }
+
+    /// Takes the pixel's next samples, in order, until it has `until` of
+    /// them or is done (all its samples, or the adaptive rule says so),
+    /// counting each into `pixel`; returns the rays traced. Not inlined:
+    /// the one-pass and the round-by-round pixel share one copy of the
+    /// sampling loop per kernel and storage (a call per pixel, against a
+    /// path per sample).
+    #[inline(never)]
+    fn take_samples<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        (x, y): (u32, u32),
+        t_start: f32,
+        memory: &mut WalkMemory<'s>,
+        pixel: &mut PixelSamples,
+        until: u32,
+    ) -> RayStats {
+        let adaptive = self.setup.adaptive;
+        let samples = self.samples();
+        // A single uniform sample is the pixel's center; adaptive samples
+        // are all offset, as a uniform frame's of several.
+        let centered = samples == 1 && adaptive.is_none();
+        let mut stats = RayStats::default();
+        // The background rules of the face-shaded look: a camera sample
+        // that misses shows the sky (the environment's radiance), the
+        // --background color, or nothing (alpha covers the hits).
+        let background = match self.setup.background {
+            Background::Color(c) => Some(c.as_vec3() * (1.0 / 255.0)),
+            Background::Sky | Background::Transparent => None,
+        };
+        let transparent = self.setup.background == Background::Transparent;
+        let end = samples.min(until);
+        while !pixel.done && pixel.taken < end {
+            let s = pixel.taken;
+            // The anti-aliasing offsets of the face-shaded look.
+            let ray = if centered {
+                self.camera.get_ray(x, y)
+            } else {
+                let offset = r2(s, pixel_key(x, y, 0));
+                self.camera
+                    .get_ray_at(x as f32 + offset.x, y as f32 + offset.y)
+            };
+            let mut rng = Rng {
+                x,
+                y,
+                sample: s,
+                event: 0,
+            };
+            let hits = stats.primary_hits;
+            let radiance = self.radiance(scene, &ray, t_start, memory, &mut rng, &mut stats);
+            let missed = stats.primary_hits == hits;
+            let radiance = match (missed, background) {
+                (true, Some(color)) => color,
+                (true, None) if transparent => Vec3::ZERO,
+                _ => radiance,
+            };
+            // A NaN from degenerate geometry is dropped, never averaged in.
+            let counted = if radiance.is_finite() {
+                radiance.clamp(Vec3::ZERO, Vec3::splat(MAX_RADIANCE))
+            } else {
+                Vec3::ZERO
+            };
+            pixel.sum += counted;
+            pixel.taken += 1;
+            if let Some(settings) = &adaptive {
+                // The noise that shows: a bright path past white changes
+                // nothing the pixel can display.
+                pixel.tally.add(counted.min(Vec3::ONE));
+                pixel.done = pixel.tally.done(settings);
+            }
+        }
+        pixel.done |= pixel.taken >= samples;
+        pixel.hits += stats.primary_hits as u32;
+        stats
+    }
+
+    /// The pixel's packed color: the mean of its samples (alpha the share
+    /// that hit, on a transparent background).
+    fn packed(&self, pixel: &PixelSamples) -> u32 {
+        let transparent = self.setup.background == Background::Transparent;
+        let sum = pixel.sum;
+        let mean_of = |n: u32| to_u8(sum * (255.0 / n as f32));
+        pack_mean(pixel.taken, pixel.hits, transparent, mean_of)
+    }
+}
