@@ -11,7 +11,7 @@ use glam::IVec3;
 use crate::error::Error;
 use crate::geom::IAabb;
 use crate::storage::octree::node::{
-    brick_local, child_offset, BrickMaterials, Node, NodeKind, BRICK,
+    brick_bit, child_offset, BrickMaterials, Node, NodeKind, BRICK,
 };
 use crate::storage::octree::{occupied_box, OctreeLen, OctreeScene};
 use crate::voxel::{Region, VoxelSource};
@@ -236,8 +236,14 @@ impl<'s, S: VoxelSource + ?Sized, K: Sink> Builder<'s, S, K> {
                 }
             }
         } else {
-            for bit in 0..64 {
-                visit(bit, self.tile_material(corner + brick_local(bit)));
+            // Cut by the bounds: a voxel at a time, outside ones empty.
+            for z in 0..BRICK {
+                for y in 0..BRICK {
+                    for x in 0..BRICK {
+                        let local = IVec3::new(x, y, z);
+                        visit(brick_bit(local), self.tile_material(corner + local));
+                    }
+                }
             }
         }
         let solid = &packed[..count];
