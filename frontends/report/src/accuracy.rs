@@ -39,8 +39,65 @@ pub struct AccuracyArgs {
     /// quick: 1].
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
     runs: Option<u16>,
+    /// Measure one section only and write it as `<section>.md` (and its
+    /// images), leaving `accuracy.md` as it is: for tuning, not the
+    /// README's figures.
+    #[arg(long, value_enum)]
+    only: Option<Section>,
     #[command(flatten)]
     output: Output,
+}
+
+/// A section `--only` can run alone.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum Section {
+    /// The default adaptive sampling, `--quality final` and the denoiser
+    /// against uniform samples ([`convergence`]; about a minute at the
+    /// README's size on two cores, without the other sections' three).
+    Convergence,
+}
+
+/// The command that gives this report, for its header.
+fn command(args: &AccuracyArgs) -> String {
+    let features = if cfg!(feature = "denoise") {
+        " --features denoise"
+    } else {
+        ""
+    };
+    let size = if args.full {
+        " --full"
+    } else if args.quick {
+        " --quick"
+    } else {
+        ""
+    };
+    let only = match args.only {
+        Some(Section::Convergence) => " --only convergence",
+        None => "",
+    };
+    format!("cargo run --release -p voxtrace-report{features} -- accuracy{size}{only}")
+}
+
+/// `--only convergence`: the convergence section alone, into
+/// `convergence.md` and its images.
+fn run_convergence(args: &AccuracyArgs, runs: usize) -> Result<(), String> {
+    let plan = if args.quick {
+        &convergence::QUICK
+    } else {
+        &convergence::PLAN
+    };
+    let (converged, threads) = on_threads(args.output.threads, || {
+        let threads = voxtrace::rayon::current_num_threads();
+        convergence::measure_all(plan, runs, &args.output.out_dir).map(|m| (m, threads))
+    })?;
+    let md = format!(
+        "Measured by `{}` on {} with {}.\n{}",
+        command(args),
+        cpu_name(),
+        count_of(threads, "thread"),
+        convergence::section(&converged, plan, runs)
+    );
+    args.output.write_markdown("convergence", &md)
 }
 
 /// The scene: terrain of seed 1 in a volume of side 128, seen from above
@@ -122,6 +179,10 @@ pub fn run(args: &AccuracyArgs) -> Result<(), String> {
         (640, 360)
     };
     args.output.prepare()?;
+    let runs = usize::from(args.runs.unwrap_or(if args.quick { 1 } else { 3 }));
+    if args.only == Some(Section::Convergence) {
+        return run_convergence(args, runs);
+    }
     let camera = Camera::new(CameraSettings {
         width,
         height,
@@ -132,7 +193,6 @@ pub fn run(args: &AccuracyArgs) -> Result<(), String> {
     let scene = OctreeScene::build(&VoxelGenerator::new(SEED), IAabb::centered(SIZE))
         .map_err(|e| e.to_string())?;
     let frame = Framebuffer::new(width, height).map_err(|e| e.to_string())?;
-    let runs = usize::from(args.runs.unwrap_or(if args.quick { 1 } else { 3 }));
 
     let (rows, reference_ms, threads) = on_threads(args.output.threads, || {
         let threads = voxtrace::rayon::current_num_threads();
@@ -194,17 +254,15 @@ pub fn run(args: &AccuracyArgs) -> Result<(), String> {
         convergence::measure_all(plan, runs, &args.output.out_dir)
     })?;
 
-    let command = format!(
-        "cargo run --release -p voxtrace-report -- accuracy{}",
-        if args.full {
-            " --full"
-        } else if args.quick {
-            " --quick"
-        } else {
-            ""
-        }
+    let mut md = table(
+        &rows,
+        &command(args),
+        width,
+        height,
+        threads,
+        runs,
+        reference_ms,
     );
-    let mut md = table(&rows, &command, width, height, threads, runs, reference_ms);
     md.push_str(&path_accuracy::section(&materials, grid, runs));
     md.push_str(&convergence::section(&converged, plan, runs));
     md.push_str(&geometric::section(

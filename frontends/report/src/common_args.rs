@@ -37,6 +37,15 @@ impl Output {
         markdown: &str,
         charts: &[crate::plot::Chart],
     ) -> Result<(), String> {
+        self.write_markdown(name, markdown)?;
+        let plot = self.out_dir.join(format!("{name}.png"));
+        crate::plot::draw(&plot, charts)?;
+        eprintln!("wrote {}", plot.display());
+        Ok(())
+    }
+
+    /// Writes `markdown` as `<name>.md` through an atomic write.
+    pub fn write_markdown(&self, name: &str, markdown: &str) -> Result<(), String> {
         let table = self.out_dir.join(format!("{name}.md"));
         // Each file whole or not at all (temporary file, then rename), so a
         // failed or interrupted report keeps the previous tables and plots.
@@ -45,9 +54,7 @@ impl Output {
                 .map_err(|e| e.to_string())
         })
         .map_err(|e| format!("cannot write {}: {e}", table.display()))?;
-        let plot = self.out_dir.join(format!("{name}.png"));
-        crate::plot::draw(&plot, charts)?;
-        eprintln!("wrote {} and {}", table.display(), plot.display());
+        eprintln!("wrote {}", table.display());
         Ok(())
     }
 }
