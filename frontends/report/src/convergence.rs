@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 
 use voxtrace::{render_parallel, Adaptive, Framebuffer, Rect, RenderOptions};
 
-use crate::measure::{count_of, format_ms, median_of};
+use crate::measure::{count_of, format_ms, median_ms};
 use crate::path_accuracy::{self, PathScene};
 use voxtrace_cli::image_error::{psnr, rmse};
 
@@ -112,7 +112,8 @@ pub struct Measured {
     rows: Vec<Row>,
 }
 
-/// Measures every scene (median of `runs` per row) and writes each
+/// Measures every scene (median of `runs` per row, the rows' runs
+/// interleaved) and writes each
 /// scene's frames side by side, then its reference, to
 /// `convergence-NAME.png` in `out_dir`.
 pub fn measure_all(plan: &Plan, runs: usize, out_dir: &Path) -> Result<Vec<Measured>, String> {
@@ -156,40 +157,63 @@ fn measure(
         render(&Sampling::Uniform(plan.reference_spp).options(scene.options))?;
     let reference = frame.to_vec();
     let pixels = u64::from(width) * u64::from(height);
-    let mut rows = Vec::new();
-    let mut frames: Vec<Vec<u32>> = Vec::new();
-    for sampling in samplings(plan) {
+    // A row's frame: its time (the denoiser's included), primary rays and
+    // pixels.
+    let run_row = |sampling: Sampling| -> Result<(Duration, u64, Vec<u32>), String> {
         let options = sampling.options(scene.options);
-        let mut primary = 0;
-        let mut image = Vec::new();
-        let ms = median_of(runs, || {
-            let (took, rays) = render(&options)?;
-            primary = rays;
-            image = frame.to_vec();
-            #[cfg(feature = "denoise")]
-            let took = match sampling {
-                Sampling::Denoised(_) => {
-                    let started = Instant::now();
-                    let region = Rect::full(camera);
-                    let guides = voxtrace_cli::guides::render_guides(
-                        scene.scene,
-                        camera,
-                        &options,
-                        region,
-                        true,
-                    );
-                    voxtrace_cli::denoise::denoise(&mut image, width, height, &guides)?;
-                    took + started.elapsed()
-                }
-                _ => took,
-            };
-            Ok(took)
-        })?;
+        let (took, primary) = render(&options)?;
+        let image = frame.to_vec();
+        #[cfg(feature = "denoise")]
+        let (took, image) = match sampling {
+            Sampling::Denoised(_) => {
+                let mut image = image;
+                let started = Instant::now();
+                let region = Rect::full(camera);
+                let guides = voxtrace_cli::guides::render_guides(
+                    scene.scene,
+                    camera,
+                    &options,
+                    region,
+                    true,
+                );
+                voxtrace_cli::denoise::denoise(&mut image, width, height, &guides)?;
+                (took + started.elapsed(), image)
+            }
+            _ => (took, image),
+        };
+        Ok((took, primary, image))
+    };
+    let rows_sampled = samplings(plan);
+    // An untimed pass warms the caches and keeps each row's frame and rays:
+    // a pixel's samples depend only on the pixel, so every run renders
+    // the same frame.
+    let mut frames = Vec::new();
+    let mut primaries = Vec::new();
+    for &sampling in &rows_sampled {
+        let (_, primary, image) = run_row(sampling)?;
+        primaries.push(primary);
+        frames.push(image);
+    }
+    // The timed runs alternate the rows, so a change in the machine's load
+    // falls on every row alike rather than on whichever ran then.
+    let mut times = vec![Vec::new(); rows_sampled.len()];
+    for _ in 0..runs.max(1) {
+        for (&sampling, row_times) in rows_sampled.iter().zip(&mut times) {
+            row_times.push(run_row(sampling)?.0);
+        }
+    }
+    let mut rows = Vec::new();
+    for (((sampling, primary), image), mut row_times) in rows_sampled
+        .into_iter()
+        .zip(primaries)
+        .zip(&frames)
+        .zip(times)
+    {
         let row = Row {
             label: sampling.label(),
             samples_per_pixel: primary as f64 / pixels as f64,
-            ms,
-            rmse: rmse(&image, &reference),
+            ms: median_ms(&mut row_times),
+            rmse: rmse(image, &reference),
         };
         eprintln!(
             "{} {}: {} {:.1} spp rmse {:.3}",
@@ -200,7 +224,6 @@ fn measure(
             row.rmse
         );
         rows.push(row);
-        frames.push(image);
     }
     frames.push(reference);
     let measured = Measured {
@@ -231,7 +254,8 @@ pub fn section(measured: &[Measured], plan: &Plan, runs: usize) -> String {
         md,
         "\n### Converging by default: adaptive sampling and the denoiser\n\n\
          Path-traced frames at {width}x{height} with the scene's own bounces, median of {} \
-         per row (a denoised row's time includes its guides and the filter). Error \
+         per row, the rows' runs taken in turn after an untimed pass (a denoised row's \
+         time includes its guides and the filter). Error \
          against a reference of {} uniform samples per pixel; a pixel's samples depend only \
          on the pixel and their index, so a uniform row's samples are the reference's first \
          ones, which flatters the uniform rows as they near it. `convergence-NAME.png` \
