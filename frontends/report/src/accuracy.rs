@@ -52,8 +52,8 @@ pub struct AccuracyArgs {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 enum Section {
     /// The default adaptive sampling, `--quality final` and the denoiser
-    /// against uniform samples ([`convergence`]; about a minute at the
-    /// README's size on two cores, without the other sections' three).
+    /// against uniform samples ([`convergence`]; under half the full
+    /// report's time: its two references and rows, none of the others).
     Convergence,
 }
 
