@@ -25,41 +25,6 @@ use crate::render::stats::RayStats;
 use crate::scene::WalkMemory;
 use crate::scene::{Reach, Scene};
 
-/// `$run` (a closure-like `|kernel| expr`) with the path tracer of
-/// `$camera` and `$setup` compiled for the material kinds the scene holds
-/// (one kernel, every kind on, without `effect-kernels`: the kinds a
-/// scene lacks never match, the same pixels).
-#[cfg(feature = "path")]
-macro_rules! with_path_kernel {
-    ($camera:expr, $setup:expr, |$kernel:ident| $run:expr) => {{
-        let (camera, setup) = ($camera, $setup);
-        if !cfg!(feature = "effect-kernels") {
-            let $kernel = &Path::<true, true, true> { camera, setup };
-            $run
-        } else {
-            let kinds = setup.materials.kinds();
-            with_path_kernel!(@match kinds, camera, setup, $kernel, $run,
-                (false, false, false),
-                (false, false, true),
-                (false, true, false),
-                (false, true, true),
-                (true, false, false),
-                (true, false, true),
-                (true, true, false),
-                (true, true, true))
-        }
-    }};
-    (@match $kinds:ident, $camera:ident, $setup:ident, $kernel:ident, $run:expr,
-        $(($g:literal, $m:literal, $e:literal)),*) => {
-        match ($kinds.glass, $kinds.metal, $kinds.emissive) {
-            $(($g, $m, $e) => {
-                let $kernel = &Path::<$g, $m, $e> { camera: $camera, setup: $setup };
-                $run
-            })*
-        }
-    };
-}
-
 impl<'m> Shader<'_, 'm> {
     /// Runs `job` with the kernel compiled for this frame's effects.
     pub(crate) fn dispatch<J: FrameJob>(&self, job: J) -> J::Output {
@@ -110,14 +75,19 @@ impl<'m> Shader<'_, 'm> {
         )
     }
 
-    /// Runs `job` with the path tracer compiled for the material kinds
-    /// the scene holds, when the frame is path-traced; hands the job back
+    /// Runs `job` with the path tracer when the frame is path-traced;
+    /// hands the job back
     /// otherwise (a face-shaded frame is one pass: its caller renders it
-    /// as usual, and no round code is compiled for its kernels).
+    /// as usual, and no round code is compiled for its kernels). One
+    /// kernel with every material kind on serves every scene (the kinds
+    /// a scene lacks never match: the same pixels), so the round code is
+    /// compiled once, not once per set of kinds (a megabyte of the CLI's
+    /// binary, for a mode a user opts into).
     #[cfg(feature = "path")]
     pub(crate) fn dispatch_rounds<J: RoundsJob>(&self, job: J) -> Result<J::Output, J> {
         if let Some(setup) = &self.path {
-            return Ok(with_path_kernel!(self.camera, setup, |kernel| job.run(kernel)));
+            let camera = self.camera;
+            return Ok(job.run(&Path::<true, true, true> { camera, setup }));
         }
         Err(job)
     }
@@ -126,7 +96,29 @@ impl<'m> Shader<'_, 'm> {
     /// the scene holds.
     #[cfg(feature = "path")]
     fn dispatch_path<J: FrameJob>(&self, setup: &PathSetup<'m>, job: J) -> J::Output {
-        with_path_kernel!(self.camera, setup, |kernel| job.run(kernel))
+        let camera = self.camera;
+        if !cfg!(feature = "effect-kernels") {
+            // The kinds a scene lacks never match: the same pixels.
+            return job.run(&Path::<true, true, true> { camera, setup });
+        }
+        let kinds = setup.materials.kinds();
+        macro_rules! path_kernels {
+            ($(($g:literal, $m:literal, $e:literal)),* $(,)?) => {
+                match (kinds.glass, kinds.metal, kinds.emissive) {
+                    $(($g, $m, $e) => job.run(&Path::<$g, $m, $e> { camera, setup }),)*
+                }
+            };
+        }
+        path_kernels!(
+            (false, false, false),
+            (false, false, true),
+            (false, true, false),
+            (false, true, true),
+            (true, false, false),
+            (true, false, true),
+            (true, true, false),
+            (true, true, true),
+        )
     }
 }
 
