@@ -18,6 +18,27 @@ use crate::render::stats::{RayStats, Rect};
 use crate::render::tiles::{render_tiles, TILE};
 use crate::scene::Scene;
 
+/// The checks every threaded render makes before it starts: a region the
+/// camera can render, a framebuffer of the region's size
+/// ([`Error::SizeMismatch`]) and usable options.
+pub(crate) fn check_frame(
+    camera: &Camera,
+    options: &RenderOptions,
+    region: Rect,
+    frame: &Framebuffer,
+) -> Result<(), Error> {
+    region.validate(camera)?;
+    let actual = (frame.width(), frame.height());
+    if actual != (region.width, region.height) {
+        return Err(Error::SizeMismatch {
+            expected: (region.width, region.height),
+            actual,
+        });
+    }
+    options.validate()?;
+    Ok(())
+}
+
 /// Renders the crop `region` of `camera`'s frame into `frame` on the current
 /// rayon pool: pixel `(x, y)` of `frame` is pixel `(region.x + x,
 /// region.y + y)` of the frame, byte-identical to the scalar
@@ -65,15 +86,7 @@ where
     S: Scene + Sync + ?Sized,
     P: Fn(u32) + Sync + ?Sized,
 {
-    region.validate(camera)?;
-    let actual = (frame.width(), frame.height());
-    if actual != (region.width, region.height) {
-        return Err(Error::SizeMismatch {
-            expected: (region.width, region.height),
-            actual,
-        });
-    }
-    options.validate()?;
+    check_frame(camera, options, region, frame)?;
     Ok(
         Shader::new(options, camera, scene.materials()).dispatch(Frame {
             scene,

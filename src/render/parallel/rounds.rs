@@ -12,7 +12,7 @@ use crate::error::Error;
 use crate::render::camera::Camera;
 use crate::render::framebuffer::Framebuffer;
 use crate::render::options::RenderOptions;
-use crate::render::parallel::render_parallel_with_progress;
+use crate::render::parallel::{check_frame, render_parallel_with_progress};
 #[cfg(feature = "path")]
 use crate::render::rounds::in_rounds;
 use crate::render::rounds::{PixelSamples, RoundsDone};
@@ -56,15 +56,7 @@ where
     S: Scene + Sync + ?Sized,
     P: Fn(u32) + Sync + ?Sized,
 {
-    region.validate(camera)?;
-    let actual = (frame.width(), frame.height());
-    if actual != (region.width, region.height) {
-        return Err(Error::SizeMismatch {
-            expected: (region.width, region.height),
-            actual,
-        });
-    }
-    options.validate()?;
+    check_frame(camera, options, region, frame)?;
     let required = region.area()?;
     if pixels.len() < required {
         return Err(Error::BufferTooSmall {
