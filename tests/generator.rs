@@ -119,3 +119,43 @@ fn lookup_fill_box_and_classify_agree_with_material() {
         Region::Solid(_)
     ));
 }
+
+#[test]
+fn the_edges_of_the_coordinate_range_answer_without_overflow() {
+    let g = VoxelGenerator::new(5);
+    for x in [i32::MIN, i32::MIN + 1, -1, 0, i32::MAX - 1, i32::MAX] {
+        for z in [i32::MIN, 0, i32::MAX] {
+            let h = g.height(x, z);
+            assert!((0..=HEIGHT).contains(&h), "({x}, {z}): {h}");
+            assert_eq!(g.material(IVec3::new(x, h, z)) != 0, h >= 0);
+            assert_eq!(g.material(IVec3::new(x, h + 1, z)), 0);
+        }
+    }
+    // A row of columns ending at the last coordinate a box can hold.
+    let end = IAabb::new(
+        IVec3::new(i32::MAX - 40, 0, 7),
+        IVec3::new(i32::MAX, HEIGHT + 1, 9),
+    );
+    let mut filled = vec![0u8; end.volume().unwrap()];
+    g.fill_box(end, &mut filled);
+    for (pos, &m) in end.iter().zip(&filled) {
+        assert_eq!(m, g.material(pos), "{pos}");
+    }
+}
+
+#[test]
+fn a_box_empty_in_any_axis_is_empty() {
+    let g = VoxelGenerator::new(5);
+    for (min, max) in [
+        (IVec3::new(0, 0, 0), IVec3::new(4, 0, 4)),
+        (IVec3::new(0, -9, 0), IVec3::new(4, -9, 4)),
+        (IVec3::new(0, 5, 0), IVec3::new(4, -3, 4)),
+        (IVec3::new(3, 0, 0), IVec3::new(3, 10, 4)),
+    ] {
+        assert_eq!(
+            g.classify(IAabb::new(min, max)),
+            Region::Empty,
+            "{min} {max}"
+        );
+    }
+}

@@ -69,7 +69,9 @@ impl VoxelGenerator {
     #[inline(never)]
     fn heights(&self, x0: i32, z: i32, out: &mut [i32]) {
         let row = self.perlin.row(f64::from(z) * SCALE);
-        for (h, x) in out.iter_mut().zip(x0..) {
+        // An inclusive range: `x0..` would step past `i32::MAX` after the
+        // last column there.
+        for (h, x) in out.iter_mut().zip(x0..=i32::MAX) {
             *h = to_height(row.get(f64::from(x) * SCALE));
         }
     }
@@ -173,7 +175,7 @@ impl VoxelSource for VoxelGenerator {
     /// filling them cost far more than these noise evaluations.
     fn classify(&self, region: IAabb) -> Region {
         let (lo, hi) = (region.min.y, region.max.y - 1);
-        if lo > HEIGHT {
+        if lo > HEIGHT || region.is_empty() {
             return Region::Empty;
         }
         let one_band = band(lo) == band(hi);

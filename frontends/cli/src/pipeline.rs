@@ -189,11 +189,8 @@ impl BuiltScene {
             threaded,
             progress,
         };
-        // Monomorphized per storage: the hot loop never calls through `dyn`.
-        match self {
-            BuiltScene::Dense(scene) => job.shaded(scene, materials),
-            BuiltScene::Octree(scene) => job.shaded(scene, materials),
-        }
+        let (rendered, _) = self.run(materials, &job, Pass::Once)?;
+        Ok(rendered)
     }
 
     /// [`BuiltScene::render_with`], the samples taken in rounds over the
@@ -225,14 +222,29 @@ impl BuiltScene {
             threaded,
             progress,
         };
+        let (rendered, done) = self.run(materials, &job, Pass::Rounds(keep_going))?;
+        Ok((
+            rendered,
+            done.expect("a render in rounds reports its rounds"),
+        ))
+    }
+
+    /// Runs `job` on the storage shaded with `materials`, monomorphized
+    /// per storage and materials: the hot loop never calls through `dyn`.
+    fn run(
+        &self,
+        materials: Option<SceneMaterials<'_>>,
+        job: &RenderJob<'_>,
+        pass: Pass<'_>,
+    ) -> Result<(Rendered, Option<RoundsDone>), String> {
         match (self, materials) {
-            (BuiltScene::Dense(scene), None) => job.in_rounds(scene, keep_going),
-            (BuiltScene::Octree(scene), None) => job.in_rounds(scene, keep_going),
+            (BuiltScene::Dense(scene), None) => job.run(scene, pass),
+            (BuiltScene::Octree(scene), None) => job.run(scene, pass),
             (BuiltScene::Dense(scene), Some(m)) => {
-                job.in_rounds(&WithMaterials::new(scene, m.table, m.emitters), keep_going)
+                job.run(&WithMaterials::new(scene, m.table, m.emitters), pass)
             }
             (BuiltScene::Octree(scene), Some(m)) => {
-                job.in_rounds(&WithMaterials::new(scene, m.table, m.emitters), keep_going)
+                job.run(&WithMaterials::new(scene, m.table, m.emitters), pass)
             }
         }
     }
@@ -251,25 +263,23 @@ struct RenderJob<'a> {
     progress: &'a (dyn Fn(u32) + Sync),
 }
 
-impl RenderJob<'_> {
-    /// Renders `scene` shaded with `materials` (`None`: all diffuse).
-    fn shaded<S: Scene + Sync>(
-        &self,
-        scene: &S,
-        materials: Option<SceneMaterials<'_>>,
-    ) -> Result<Rendered, String> {
-        match materials {
-            None => self.run(scene),
-            Some(m) => self.run(&WithMaterials::new(scene, m.table, m.emitters)),
-        }
-    }
+/// How a [`RenderJob`] takes its samples.
+enum Pass<'k> {
+    /// Every pixel's samples at once.
+    Once,
+    /// In rounds over the whole region while the callback, asked after
+    /// each round, says so.
+    Rounds(&'k mut dyn FnMut(u32) -> bool),
+}
 
-    /// Renders `scene` as it is, in rounds while `keep_going` says so.
-    fn in_rounds<S: Scene + Sync>(
+impl RenderJob<'_> {
+    /// Renders `scene` as it is, in `pass`; the rounds taken with
+    /// [`Pass::Rounds`].
+    fn run<S: Scene + Sync>(
         &self,
         scene: &S,
-        keep_going: &mut dyn FnMut(u32) -> bool,
-    ) -> Result<(Rendered, RoundsDone), String> {
+        pass: Pass<'_>,
+    ) -> Result<(Rendered, Option<RoundsDone>), String> {
         let RenderJob {
             camera,
             region,
@@ -277,108 +287,98 @@ impl RenderJob<'_> {
             threaded,
             progress,
         } = *self;
+        let between = matches!(pass, Pass::Rounds(_));
         let no_memory = || {
             format!(
-                "out of memory: cannot allocate a {}x{} image and its samples between rounds",
-                region.width, region.height
+                "out of memory: cannot allocate a {}x{} image{}",
+                region.width,
+                region.height,
+                if between {
+                    " and its samples between rounds"
+                } else {
+                    ""
+                }
             )
         };
         region.validate(camera).map_err(|e| e.to_string())?;
         let area = region.area().map_err(|e| e.to_string())?;
-        let mut state = Vec::new();
-        state.try_reserve_exact(area).map_err(|_| no_memory())?;
-        state.resize(area, PixelSamples::default());
         let started = Instant::now();
-        let (pixels, done) = if threaded {
-            let frame =
-                Framebuffer::new_parallel(region.width, region.height).map_err(|_| no_memory())?;
-            let done = render_parallel_in_rounds(
-                scene, camera, options, region, &frame, &mut state, progress, keep_going,
-            )
-            .map_err(|e| e.to_string())?;
-            (frame.into_pixels(), done)
-        } else {
-            let mut pixels = Vec::new();
-            pixels.try_reserve_exact(area).map_err(|_| no_memory())?;
-            pixels.resize(area, 0);
-            // The scalar path reports a round's rows when it ends.
-            let keep_going = |n| {
-                progress(region.height);
-                keep_going(n)
-            };
-            let done = render_region_in_rounds(
-                scene,
-                camera,
-                options,
-                region,
-                &mut pixels,
-                &mut state,
-                keep_going,
-            )
-            .map_err(|e| e.to_string())?;
-            (pixels, done)
+        let (pixels, rays, done) = match pass {
+            Pass::Once if threaded => {
+                // Zeroed on the render's own pool (this runs inside its `install`).
+                let frame = Framebuffer::new_parallel(region.width, region.height)
+                    .map_err(|_| no_memory())?;
+                let rays =
+                    render_parallel_with_progress(scene, camera, options, region, &frame, progress)
+                        .map_err(|e| e.to_string())?;
+                (frame.into_pixels(), rays, None)
+            }
+            Pass::Once => {
+                // The scalar path, a band of rows at a time for the progress
+                // callback (sixteen rows: the tiles primary rays are traced in).
+                const BAND: u32 = 16;
+                let mut pixels = filled(area, 0).ok_or_else(no_memory)?;
+                let mut rays = RayStats::default();
+                let bands = pixels.chunks_mut(region.width as usize * BAND as usize);
+                for (y, band) in (region.y..).step_by(BAND as usize).zip(bands) {
+                    let rect = Rect {
+                        y,
+                        height: (band.len() / region.width as usize) as u32,
+                        ..region
+                    };
+                    rays += render_region(scene, camera, options, rect, band)
+                        .map_err(|e| e.to_string())?;
+                    progress(rect.height);
+                }
+                (pixels, rays, None)
+            }
+            Pass::Rounds(keep_going) => {
+                let mut state = filled(area, PixelSamples::default()).ok_or_else(no_memory)?;
+                let (pixels, done) = if threaded {
+                    let frame = Framebuffer::new_parallel(region.width, region.height)
+                        .map_err(|_| no_memory())?;
+                    let done = render_parallel_in_rounds(
+                        scene, camera, options, region, &frame, &mut state, progress, keep_going,
+                    )
+                    .map_err(|e| e.to_string())?;
+                    (frame.into_pixels(), done)
+                } else {
+                    let mut pixels = filled(area, 0).ok_or_else(no_memory)?;
+                    // The scalar path reports a round's rows when it ends.
+                    let keep_going = |n| {
+                        progress(region.height);
+                        keep_going(n)
+                    };
+                    let done = render_region_in_rounds(
+                        scene,
+                        camera,
+                        options,
+                        region,
+                        &mut pixels,
+                        &mut state,
+                        keep_going,
+                    )
+                    .map_err(|e| e.to_string())?;
+                    (pixels, done)
+                };
+                (pixels, done.rays, Some(done))
+            }
         };
         let rendered = Rendered {
             pixels,
-            rays: done.rays,
+            rays,
             elapsed: started.elapsed(),
         };
         Ok((rendered, done))
     }
+}
 
-    /// Renders `scene` as it is.
-    fn run<S: Scene + Sync>(&self, scene: &S) -> Result<Rendered, String> {
-        let RenderJob {
-            camera,
-            region,
-            options,
-            threaded,
-            progress,
-        } = *self;
-        let no_memory = || {
-            format!(
-                "out of memory: cannot allocate a {}x{} image",
-                region.width, region.height
-            )
-        };
-        region.validate(camera).map_err(|e| e.to_string())?;
-        let started = Instant::now();
-        let (pixels, rays) = if threaded {
-            // Zeroed on the render's own pool (this runs inside its `install`).
-            let frame =
-                Framebuffer::new_parallel(region.width, region.height).map_err(|_| no_memory())?;
-            let rays =
-                render_parallel_with_progress(scene, camera, options, region, &frame, progress)
-                    .map_err(|e| e.to_string())?;
-            (frame.into_pixels(), rays)
-        } else {
-            // The scalar path, a band of rows at a time for the progress
-            // callback (sixteen rows: the tiles primary rays are traced in).
-            const BAND: u32 = 16;
-            let area = region.area().map_err(|e| e.to_string())?;
-            let mut pixels = Vec::new();
-            pixels.try_reserve_exact(area).map_err(|_| no_memory())?;
-            pixels.resize(area, 0);
-            let mut rays = RayStats::default();
-            let bands = pixels.chunks_mut(region.width as usize * BAND as usize);
-            for (y, band) in (region.y..).step_by(BAND as usize).zip(bands) {
-                let rect = Rect {
-                    y,
-                    height: (band.len() / region.width as usize) as u32,
-                    ..region
-                };
-                rays +=
-                    render_region(scene, camera, options, rect, band).map_err(|e| e.to_string())?;
-                progress(rect.height);
-            }
-            (pixels, rays)
-        };
-        Ok(Rendered {
-            pixels,
-            rays,
-            elapsed: started.elapsed(),
-        })
-    }
+/// `len` copies of `value`, or `None` where the memory is refused.
+fn filled<T: Clone>(len: usize, value: T) -> Option<Vec<T>> {
+    let mut items = Vec::new();
+    items.try_reserve_exact(len).ok()?;
+    items.resize(len, value);
+    Some(items)
 }
 
 #[cfg(test)]

@@ -7,46 +7,12 @@
 
 mod common;
 
-use std::path::PathBuf;
-
-use common::run::{assert_refused, scratch_in, stderr, voxtrace};
-
-/// The repository's terrain model, all diffuse.
-fn terrain_vox() -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../docs/terrain.vox")
-        .to_string_lossy()
-        .into_owned()
-}
+use common::run::{assert_refused, render_terrain_model, stat, voxtrace};
 
 /// The bytes and `--stats` lines of a 64x36 render of the terrain model
 /// with `flags`.
 fn render(name: &str, flags: &[&str]) -> (Vec<u8>, String) {
-    let out = scratch_in("sampling", &format!("{name}.png"));
-    let vox = terrain_vox();
-    let mut args = vec![
-        "--vox",
-        &vox,
-        "--width",
-        "64",
-        "--height",
-        "36",
-        "--stats",
-        "--out",
-        out.to_str().unwrap(),
-    ];
-    args.extend_from_slice(flags);
-    let run = voxtrace(&args);
-    assert!(run.status.success(), "{flags:?}: {}", stderr(&run));
-    (std::fs::read(&out).unwrap(), stderr(&run))
-}
-
-/// The value of `key: value` in `--stats` lines.
-fn stat<'a>(stats: &'a str, key: &str) -> &'a str {
-    stats
-        .lines()
-        .find_map(|line| line.strip_prefix(key)?.strip_prefix(": "))
-        .unwrap_or_else(|| panic!("no {key} in {stats}"))
+    render_terrain_model("sampling", name, flags)
 }
 
 #[test]

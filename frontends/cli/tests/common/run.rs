@@ -60,3 +60,42 @@ pub fn entries(dir: &Path) -> Vec<String> {
     names.sort();
     names
 }
+
+/// The value of `key: value` among `--stats` lines.
+pub fn stat<'a>(stats: &'a str, key: &str) -> &'a str {
+    stats
+        .lines()
+        .find_map(|line| line.strip_prefix(key)?.strip_prefix(": "))
+        .unwrap_or_else(|| panic!("no {key} in {stats}"))
+}
+
+/// The repository's own model of the terrain, `docs/terrain.vox` (all
+/// diffuse), as an argument.
+pub fn terrain_model() -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../docs/terrain.vox")
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// The bytes and `--stats` lines of a successful 64x36 render of the
+/// terrain model with `flags`, written as `name.png` in `suite`'s folder.
+pub fn render_terrain_model(suite: &str, name: &str, flags: &[&str]) -> (Vec<u8>, String) {
+    let out = scratch_in(suite, &format!("{name}.png"));
+    let vox = terrain_model();
+    let mut args = vec![
+        "--vox",
+        &vox,
+        "--width",
+        "64",
+        "--height",
+        "36",
+        "--stats",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(flags);
+    let run = voxtrace(&args);
+    assert!(run.status.success(), "{flags:?}: {}", stderr(&run));
+    (std::fs::read(&out).unwrap(), stderr(&run))
+}
