@@ -36,6 +36,71 @@ pub(crate) fn r2(index: u32, key: u32) -> Vec2 {
     Vec2::new(unit(x), unit(y))
 }
 
+/// Point `index` of a pixel's own 2D sequence for one dimension pair of
+/// a path, `seed` naming the pair: the first two dimensions of the Sobol
+/// sequence, Owen-scrambled, with the index itself shuffled (Burley 2020,
+/// "Practical Hash-based Owen Scrambling").
+///
+/// Every aligned run of 2^k indices (the first 16 samples, the next 16,
+/// ...) is still a stratified 2D point set, as R2's prefixes are. What R2
+/// with a shift per pair lacks is independence between pairs: the same
+/// index gives every pair the same point, shifted, so a pixel's samples
+/// explore one 2D slice of the path's many dimensions, and the pixel
+/// converges to that slice's value, a bias that differs from pixel to
+/// pixel and no sample count removes. Shuffling the index per pair makes
+/// the pairs independent. Integer arithmetic only: the same bits on every
+/// target.
+#[inline]
+#[must_use]
+pub(crate) fn scrambled_sobol(index: u32, seed: u32) -> Vec2 {
+    let shuffled = owen_scramble(index, seed);
+    let x = owen_scramble(shuffled.reverse_bits(), hash_seed(seed, 1));
+    let y = owen_scramble(sobol_second(shuffled), hash_seed(seed, 2));
+    // The top 24 bits as an exact f32 in [0, 1).
+    let unit = |v: u32| (v >> 8) as f32 * (1.0 / 16_777_216.0);
+    Vec2::new(unit(x), unit(y))
+}
+
+/// The second dimension of the Sobol sequence, point `index`, in 32-bit
+/// fixed point: the XOR of the generator's columns for the index's set
+/// bits. The columns (primitive polynomial x + 1) are the rows of Pascal's
+/// triangle mod 2, each from the last by `v ^ (v >> 1)`.
+#[inline]
+fn sobol_second(mut index: u32) -> u32 {
+    let mut value = 0;
+    let mut column = 1 << 31;
+    while index != 0 {
+        if index & 1 != 0 {
+            value ^= column;
+        }
+        index >>= 1;
+        column ^= column >> 1;
+    }
+    value
+}
+
+/// A nested uniform (Owen) scramble of the bits of `value`, most
+/// significant first: each bit is flipped by a hash of `seed` and the bits
+/// above it, so points in one binary interval stay in one.
+#[inline]
+fn owen_scramble(value: u32, seed: u32) -> u32 {
+    // Laine and Karras' permutation flips each bit by the bits below it;
+    // applied to the reversed bits, by the bits above.
+    let mut v = value.reverse_bits();
+    v = v.wrapping_add(seed);
+    v ^= v.wrapping_mul(0x6C50_B47C);
+    v ^= v.wrapping_mul(0xB82F_1E52);
+    v ^= v.wrapping_mul(0xC7AF_E638);
+    v ^= v.wrapping_mul(0x8D22_F6E6);
+    v.reverse_bits()
+}
+
+/// A seed for another use of `seed` (the same hash as [`pixel_key`]'s).
+#[inline]
+fn hash_seed(seed: u32, salt: u32) -> u32 {
+    pixel_key(seed, salt, 0x5EED)
+}
+
 /// A cosine-weighted direction on the hemisphere around `+z`, from a point
 /// of the unit square: the density matches Lambert's law, so the fraction of
 /// unoccluded rays estimates the ambient light.
@@ -85,5 +150,73 @@ mod tests {
         assert_ne!(k, pixel_key(11, 10, 0));
         assert_ne!(k, pixel_key(10, 11, 0));
         assert_ne!(k, pixel_key(10, 10, 1));
+    }
+
+    #[test]
+    fn scrambled_sobol_prefixes_are_stratified() {
+        // Every aligned run of 2^k points of one seed puts one point in
+        // each cell of every 2^a x 2^b grid with a + b = k (a (0, k, 2)-net).
+        for seed in [0, 1, 0xDEAD_BEEF, pixel_key(3, 5, 7)] {
+            for k in [2u32, 4, 6] {
+                let n = 1u32 << k;
+                for start in [0, n, 5 * n] {
+                    let mut points = [Vec2::ZERO; 64];
+                    for (p, i) in points.iter_mut().zip(start..start + n) {
+                        *p = scrambled_sobol(i, seed);
+                    }
+                    for a in 0..=k {
+                        let (cols, rows) = (1u32 << a, 1u32 << (k - a));
+                        let mut cells = [0u32; 64];
+                        for p in &points[..n as usize] {
+                            assert!((0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y));
+                            let c = (p.x * cols as f32) as u32 + cols * (p.y * rows as f32) as u32;
+                            cells[c as usize] += 1;
+                        }
+                        assert!(
+                            cells[..n as usize].iter().all(|&c| c == 1),
+                            "seed {seed:#x}, 2^{k} from {start}, {cols}x{rows}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn scrambled_sobol_pairs_are_independent_where_shifted_r2_was_not() {
+        // The bias this sampler removes: with R2 shifted per pair, the
+        // first coordinates of two pairs at one index differ by a constant
+        // (mod 1), so the mean of a product of two pairs' numbers is far
+        // from the 1/4 of independent numbers for most pairs of shifts.
+        // Shuffled per pair, the products average to 1/4.
+        let n = 4096;
+        let mean_product = |f: &dyn Fn(u32, u32) -> Vec2, a: u32, b: u32| {
+            (0..n).map(|i| f(i, a).x * f(i, b).x).sum::<f32>() / n as f32
+        };
+        let mut r2_worst = 0.0f32;
+        let mut sobol_worst = 0.0f32;
+        for pair in 0..32 {
+            let (a, b) = (pixel_key(9, 4, pair), pixel_key(9, 4, pair + 100));
+            r2_worst = r2_worst.max((mean_product(&r2, a, b) - 0.25).abs());
+            sobol_worst = sobol_worst.max((mean_product(&scrambled_sobol, a, b) - 0.25).abs());
+        }
+        assert!(
+            r2_worst > 0.05,
+            "shifted R2's pairs looked independent: {r2_worst}"
+        );
+        assert!(
+            sobol_worst < 0.01,
+            "scrambled pairs are correlated: {sobol_worst}"
+        );
+    }
+
+    #[test]
+    fn sobol_second_dimension_matches_its_first_points() {
+        // 0, 1/2, 3/4, 1/4, 5/8, 1/8, 3/8, 7/8: the sequence in index
+        // order (the textbook lists it in Gray-code order).
+        let expected = [0u32, 4, 6, 2, 5, 1, 3, 7];
+        for (i, &e) in expected.iter().enumerate() {
+            assert_eq!(sobol_second(i as u32), e << 29, "point {i}");
+        }
     }
 }

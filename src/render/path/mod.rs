@@ -35,7 +35,7 @@ use crate::render::adaptive::Adaptive;
 use crate::render::camera::Camera;
 use crate::render::options::{Background, Bounces, Fog, RenderOptions};
 use crate::render::rays::{around, primary, secondary};
-use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
+use crate::render::sampling::{cosine_hemisphere, pixel_key, scrambled_sobol};
 use crate::render::shade::{sky, SKY_HORIZON};
 use crate::render::stats::RayStats;
 use crate::scene::WalkMemory;
@@ -52,10 +52,11 @@ const MAX_RADIANCE: f32 = 16.0;
 /// anti-aliasing (0) and ambient occlusion (1 + sample).
 const PATH_STREAM: u32 = 0x8000_0000;
 
-/// The random numbers of one camera sample: point `sample` of the R2
-/// sequence, shifted per pixel and per path event (each bounce, light
-/// choice and Fresnel choice is one event), so samples of one event are
-/// stratified and every number depends only on pixel, sample and event.
+/// The random numbers of one camera sample: point `sample` of the pixel's
+/// scrambled Sobol sequence for each path event (each bounce, light choice
+/// and Fresnel choice is one event, with its own scramble), so samples of
+/// one event are stratified, events are independent of each other, and
+/// every number depends only on pixel, sample and event.
 pub(crate) struct Rng {
     x: u32,
     y: u32,
@@ -69,7 +70,7 @@ impl Rng {
     pub(crate) fn next(&mut self) -> glam::Vec2 {
         let key = pixel_key(self.x, self.y, PATH_STREAM.wrapping_add(self.event));
         self.event = self.event.wrapping_add(1);
-        r2(self.sample, key)
+        scrambled_sobol(self.sample, key)
     }
 }
 
