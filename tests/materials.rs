@@ -126,9 +126,11 @@ fn a_glass_slab_before_a_red_wall_shows_the_wall_tinted_by_the_glass() {
         mean_around(&pixels, 33, (16, 16))
     };
     let (wall_alone, tinted, clear) = (look(0), look(2), look(3));
-    // Red through the glass.
+    // Red through the glass: the wall (220, 60, 60) times the tint
+    // (120, 200, 255) / 255 is (104, 47, 60), and the sky reflected adds
+    // about 20 to each channel, so red leads blue by about 1.5 at most.
     assert!(
-        tinted.x > 1.5 * tinted.y && tinted.x > 1.5 * tinted.z,
+        tinted.x > 1.3 * tinted.y && tinted.x > 1.3 * tinted.z,
         "{tinted}"
     );
     // The clear pane reflects some sky and passes the rest untinted; the
