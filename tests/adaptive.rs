@@ -34,7 +34,7 @@ fn camera() -> Camera {
 const SMALL: Adaptive = Adaptive {
     min_samples: 4,
     max_samples: 32,
-    threshold: 0.05,
+    threshold: 0.005,
 };
 
 fn adaptive(settings: Adaptive) -> RenderOptions {

@@ -52,7 +52,7 @@ fn settings() -> Vec<RenderOptions> {
         adaptive: Some(Adaptive {
             min_samples: 4,
             max_samples: 32,
-            threshold: 0.05,
+            threshold: 0.005,
         }),
         ..RenderOptions::default()
     };

@@ -119,7 +119,7 @@ pub struct PixelSamples {
     /// The sum of their radiance, in the order they were taken.
     #[cfg(feature = "path")]
     pub(crate) sum: Vec3,
-    /// The adaptive tally of their luminance.
+    /// The adaptive tally of their displayable values.
     #[cfg(feature = "path")]
     pub(crate) tally: Tally,
 }

@@ -181,9 +181,10 @@ pub struct Args {
 
     /// Adaptive sampling of a path-traced scene (metal, glass, emitters or
     /// --bounces): each pixel takes 16 to 64 samples in rounds of 16 (32 to
-    /// 256 in rounds of 32 with --quality final), stopping when the
-    /// standard error of its mean luminance over the square root of the
-    /// mean plus 0.05 is below X [default: 0.05, final 0.025; the default
+    /// 256 in rounds of 32 with --quality final), stopping once another
+    /// sample would take less than X off its error: once the spread of its
+    /// samples (per channel, clamped to white, in units of white) over
+    /// their count is below X [default: 0.005, final 0.0015; the default
     /// without --spp].
     #[arg(long, value_name = "X", value_parser = parse_threshold, allow_hyphen_values = true, conflicts_with = "spp")]
     pub noise_threshold: Option<f32>,

@@ -384,8 +384,8 @@ fn filled<T: Clone>(len: usize, value: T) -> Option<Vec<T>> {
 #[cfg(test)]
 mod tests {
     #[test]
-    fn a_pixel_keeps_36_bytes_between_rounds() {
+    fn a_pixel_keeps_48_bytes_between_rounds() {
         // docs/cli.md says so; the memory check counts them.
-        assert_eq!(super::ROUND_STATE_BYTES, 36);
+        assert_eq!(super::ROUND_STATE_BYTES, 48);
     }
 }

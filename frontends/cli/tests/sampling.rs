@@ -31,7 +31,7 @@ fn spp_and_noise_threshold_conflict_in_one_line() {
 fn path_traced_scenes_sample_adaptively_unless_spp_is_given() {
     let (adaptive, stats) = render("adaptive-2", &["--bounces", "1", "--threads", "2"]);
     assert!(
-        stat(&stats, "effects").contains("adaptive(16-64 spp, threshold 0.05)"),
+        stat(&stats, "effects").contains("adaptive(16-64 spp, threshold 0.005)"),
         "{stats}"
     );
     let spp: f64 = stat(&stats, "samples_per_pixel").parse().unwrap();

@@ -153,7 +153,7 @@ fn a_limit_that_changes_nothing_gets_a_note() {
 fn max_spp_caps_adaptive_sampling() {
     let (_, stats) = render("max-32", &["--bounces", "1", "--max-spp", "32"]);
     assert!(
-        stat(&stats, "effects").contains("adaptive(16-32 spp, threshold 0.05)"),
+        stat(&stats, "effects").contains("adaptive(16-32 spp, threshold 0.005)"),
         "{stats}"
     );
     // Below the first round: one round of that many.

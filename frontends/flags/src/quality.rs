@@ -30,7 +30,8 @@ pub const FINAL_SPP: u16 = 16;
 pub struct Sampling {
     /// `--spp`: uniform samples per pixel; `None` when not given.
     pub spp: Option<u16>,
-    /// `--noise-threshold`: adaptive sampling to this relative error.
+    /// `--noise-threshold`: adaptive sampling to this threshold
+    /// ([`voxtrace::Adaptive::threshold`]).
     pub noise_threshold: Option<f32>,
     /// `--max-spp`: adaptive sampling to at most this many samples.
     pub max_spp: Option<u16>,

@@ -132,10 +132,8 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
             pixel.sum += counted;
             pixel.taken += 1;
             if let Some(settings) = &adaptive {
-                // The noise that shows: a bright path past white changes
-                // nothing the pixel can display.
-                pixel.tally.add(counted.min(Vec3::ONE));
-                pixel.done = pixel.tally.done(settings);
+                pixel.tally.add(counted);
+                pixel.done = pixel.tally.done(pixel.taken, settings);
             }
         }
         pixel.done |= pixel.taken >= samples;

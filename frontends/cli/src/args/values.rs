@@ -196,13 +196,13 @@ pub fn parse_distance(s: &str) -> Result<f32, String> {
     }
 }
 
-/// `--noise-threshold`: a relative error, positive, finite and at most 1
-/// (above that every pixel would stop at its first round).
+/// `--noise-threshold`: positive, finite and at most 1 (above that every
+/// pixel would stop at its first round).
 pub fn parse_threshold(s: &str) -> Result<f32, String> {
     match s.trim().parse::<f32>() {
         Ok(t) if t > 0.0 && t <= 1.0 => Ok(t),
         _ => Err(format!(
-            "'{s}' is not a noise threshold: a relative error in (0, 1], such as 0.05"
+            "'{s}' is not a noise threshold: a number in (0, 1], such as 0.005"
         )),
     }
 }
