@@ -53,46 +53,80 @@ pub(crate) fn r2(index: u32, key: u32) -> Vec2 {
 #[inline]
 #[must_use]
 pub(crate) fn scrambled_sobol(index: u32, seed: u32) -> Vec2 {
-    let shuffled = owen_scramble(index, seed);
-    let x = owen_scramble(shuffled.reverse_bits(), hash_seed(seed, 1));
-    let y = owen_scramble(sobol_second(shuffled), hash_seed(seed, 2));
+    // An Owen scramble of a value is Laine and Karras' permutation of its
+    // reversed bits, reversed back; the Sobol points' first coordinate is
+    // the index reversed, and the table holds the second reversed, so four
+    // reversals serve three scrambles.
+    let shuffled = laine_karras(index.reverse_bits(), seed).reverse_bits();
+    let x = laine_karras(shuffled, hash_seed(seed, 1)).reverse_bits();
+    let y = laine_karras(sobol_second_reversed(shuffled), hash_seed(seed, 2)).reverse_bits();
     // The top 24 bits as an exact f32 in [0, 1).
     let unit = |v: u32| (v >> 8) as f32 * (1.0 / 16_777_216.0);
     Vec2::new(unit(x), unit(y))
 }
 
-/// The second dimension of the Sobol sequence, point `index`, in 32-bit
-/// fixed point: the XOR of the generator's columns for the index's set
-/// bits. The columns (primitive polynomial x + 1) are the rows of Pascal's
-/// triangle mod 2, each from the last by `v ^ (v >> 1)`.
-#[inline]
-fn sobol_second(mut index: u32) -> u32 {
-    let mut value = 0;
-    let mut column = 1 << 31;
-    while index != 0 {
-        if index & 1 != 0 {
-            value ^= column;
-        }
-        index >>= 1;
+/// The columns of the second Sobol dimension's generator (primitive
+/// polynomial x + 1), bits reversed: the rows of Pascal's triangle mod 2,
+/// each from the last by `v ^ (v >> 1)` before reversal.
+const fn sobol_second_columns() -> [u32; 32] {
+    let mut columns = [0; 32];
+    let mut column: u32 = 1 << 31;
+    let mut bit = 0;
+    while bit < 32 {
+        columns[bit] = column.reverse_bits();
         column ^= column >> 1;
+        bit += 1;
     }
-    value
+    columns
 }
 
-/// A nested uniform (Owen) scramble of the bits of `value`, most
-/// significant first: each bit is flipped by a hash of `seed` and the bits
-/// above it, so points in one binary interval stay in one.
+/// For each byte of an index, the XOR of the reversed columns of its set
+/// bits: four lookups instead of a loop over 32 bits.
+const SOBOL_SECOND_BYTES: [[u32; 256]; 4] = {
+    let columns = sobol_second_columns();
+    let mut table = [[0; 256]; 4];
+    let mut byte = 0;
+    while byte < 4 {
+        let mut value = 0;
+        while value < 256 {
+            let mut xor = 0;
+            let mut bit = 0;
+            while bit < 8 {
+                if value >> bit & 1 != 0 {
+                    xor ^= columns[8 * byte + bit];
+                }
+                bit += 1;
+            }
+            table[byte][value] = xor;
+            value += 1;
+        }
+        byte += 1;
+    }
+    table
+};
+
+/// The second dimension of the Sobol sequence, point `index`, in 32-bit
+/// fixed point with its bits reversed: the XOR of the generator's columns
+/// for the index's set bits.
 #[inline]
-fn owen_scramble(value: u32, seed: u32) -> u32 {
-    // Laine and Karras' permutation flips each bit by the bits below it;
-    // applied to the reversed bits, by the bits above.
-    let mut v = value.reverse_bits();
+fn sobol_second_reversed(index: u32) -> u32 {
+    let [b0, b1, b2, b3] = index.to_le_bytes();
+    let t = &SOBOL_SECOND_BYTES;
+    t[0][usize::from(b0)] ^ t[1][usize::from(b1)] ^ t[2][usize::from(b2)] ^ t[3][usize::from(b3)]
+}
+
+/// Laine and Karras' permutation: each bit is flipped by a hash of `seed`
+/// and the bits below it. On reversed bits that is a nested uniform (Owen)
+/// scramble, each bit flipped by the bits above it, so points in one
+/// binary interval stay in one.
+#[inline]
+fn laine_karras(mut v: u32, seed: u32) -> u32 {
     v = v.wrapping_add(seed);
     v ^= v.wrapping_mul(0x6C50_B47C);
     v ^= v.wrapping_mul(0xB82F_1E52);
     v ^= v.wrapping_mul(0xC7AF_E638);
     v ^= v.wrapping_mul(0x8D22_F6E6);
-    v.reverse_bits()
+    v
 }
 
 /// A seed for another use of `seed` (the same hash as [`pixel_key`]'s).
@@ -211,12 +245,33 @@ mod tests {
     }
 
     #[test]
-    fn sobol_second_dimension_matches_its_first_points() {
+    fn sobol_second_dimension_matches_its_first_points_and_the_bitwise_sum() {
         // 0, 1/2, 3/4, 1/4, 5/8, 1/8, 3/8, 7/8: the sequence in index
         // order (the textbook lists it in Gray-code order).
         let expected = [0u32, 4, 6, 2, 5, 1, 3, 7];
         for (i, &e) in expected.iter().enumerate() {
-            assert_eq!(sobol_second(i as u32), e << 29, "point {i}");
+            assert_eq!(
+                sobol_second_reversed(i as u32).reverse_bits(),
+                e << 29,
+                "point {i}"
+            );
+        }
+        // The tables against the generator applied bit by bit.
+        let bitwise = |mut index: u32| {
+            let (mut value, mut column) = (0u32, 1u32 << 31);
+            while index != 0 {
+                if index & 1 != 0 {
+                    value ^= column;
+                }
+                index >>= 1;
+                column ^= column >> 1;
+            }
+            value
+        };
+        let mut index = 0x1234_5678u32;
+        for _ in 0..10_000 {
+            index = pixel_key(index, 1, 2);
+            assert_eq!(sobol_second_reversed(index).reverse_bits(), bitwise(index));
         }
     }
 }
