@@ -213,7 +213,40 @@ fn a_face_shaded_frame_is_one_round() {
         assert!(out == one_pass);
         assert_eq!(done.rays, rays);
         assert!(pixels.iter().all(PixelSamples::is_done));
+        assert!(pixels.iter().all(|p| p.mean_radiance().is_none()));
     }
+}
+
+#[test]
+fn each_pixels_mean_radiance_is_what_its_color_rounds() {
+    with_clutter(|scene| {
+        let cam = camera();
+        // Opaque backgrounds: the adaptive and the fixed settings.
+        for options in [settings()[0], settings()[2]] {
+            let mut out = vec![0; 40 * 30];
+            let mut pixels = vec![PixelSamples::default(); 40 * 30];
+            let full = Rect::full(&cam);
+            render_region_in_rounds(scene, &cam, &options, full, &mut out, &mut pixels, |_| true)
+                .unwrap();
+            let mut above_white = 0;
+            for (&packed, pixel) in out.iter().zip(&pixels) {
+                let mean = pixel.mean_radiance().expect("every pixel is path-traced");
+                assert!(mean.is_finite() && mean.min_element() >= 0.0, "{mean}");
+                above_white += usize::from(mean.max_element() > 1.0);
+                let shown = (mean * 255.0 + 0.5).min(Vec3::splat(255.0));
+                let [r, g, b, _] = voxtrace::unpack(packed);
+                for (byte, want) in [r, g, b].into_iter().zip(shown.to_array()) {
+                    assert!(
+                        (f32::from(byte) - want.floor()).abs() <= 1.0,
+                        "{mean} {packed:#x}"
+                    );
+                }
+            }
+            // The lamps are brighter than white: the mean keeps what the
+            // bytes clamp.
+            assert!(above_white > 0);
+        }
+    });
 }
 
 #[test]

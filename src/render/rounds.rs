@@ -140,6 +140,19 @@ impl PixelSamples {
         }
     }
 
+    /// The mean radiance of the pixel's path-traced samples, linear and
+    /// unrounded, not clamped to white (a sample is capped at 16 times
+    /// white, as always): what its packed color rounds and clamps, and
+    /// what a denoiser reads best. Over all the samples taken, so with a
+    /// transparent background, where misses count as black, it is the
+    /// color times its coverage. `None` when no path-traced sample was
+    /// taken (a face-shaded frame's pixel).
+    #[cfg(feature = "path")]
+    #[must_use]
+    pub fn mean_radiance(&self) -> Option<Vec3> {
+        (self.taken > 0).then(|| self.sum / self.taken as f32)
+    }
+
     /// Whether the pixel has all its samples: no later round changes it.
     #[must_use]
     pub fn is_done(&self) -> bool {

@@ -5,10 +5,10 @@
 use voxtrace::{Camera, Rect, RenderOptions, Scene};
 
 /// Bytes per pixel `--denoise` holds beside the frame: the albedo and
-/// normal guides and the color the filter reads and writes, three `f32`
-/// each. (Open Image Denoise's own working memory is not counted: it
+/// normal guides, the mean radiance the render keeps and the color the
+/// filter reads and writes, three `f32` each. (Open Image Denoise's own working memory is not counted: it
 /// filters in tiles of bounded size.)
-pub const BYTES_PER_PIXEL: u128 = 3 * 3 * 4;
+pub const BYTES_PER_PIXEL: u128 = 4 * 3 * 4;
 
 /// Refuses `--denoise` (`asked`) in one line where it cannot run: in a
 /// build without the `denoise` feature (saying how to get one), and with
@@ -40,7 +40,8 @@ pub fn check(asked: bool, tiled: bool) -> Result<(), String> {
 
 /// Denoises `pixels`, the render of `region` of `camera`'s frame of
 /// `scene` with `options`, in place: its albedo and normal guides are
-/// traced (rows in parallel when `threaded`), then filtered with it.
+/// traced (rows in parallel when `threaded`), then the filter reads its
+/// mean radiance where given (high dynamic range), else the pixels.
 ///
 /// # Errors
 /// Open Image Denoise's failure in one line.
@@ -51,10 +52,11 @@ pub fn apply(
     options: &RenderOptions,
     region: Rect,
     threaded: bool,
-    pixels: &mut [u32],
+    (pixels, radiance): (&mut [u32], Option<&[f32]>),
 ) -> Result<(), String> {
     let guides = voxtrace_cli::guides::render_guides(scene, camera, options, region, threaded);
-    voxtrace_cli::denoise::denoise(pixels, region.width, region.height, &guides)
+    let (width, height) = (region.width, region.height);
+    voxtrace_cli::denoise::denoise(pixels, radiance, width, height, &guides)
 }
 
 /// Without the `denoise` feature [`check`] has refused `--denoise` before
@@ -69,7 +71,7 @@ pub fn apply(
     _options: &RenderOptions,
     _region: Rect,
     _threaded: bool,
-    _pixels: &mut [u32],
+    _frame: (&mut [u32], Option<&[f32]>),
 ) -> Result<(), String> {
     check(true, false)
 }

@@ -50,6 +50,9 @@ pub struct Job<'a> {
     /// `--time-limit` of a path-traced frame: each frame's samples taken
     /// in rounds until the budget is spent.
     pub budget: Option<Budget>,
+    /// The most rounds a render in rounds of a frame takes (its plan's):
+    /// how often such a render goes over the rows.
+    pub rounds_most: u32,
 }
 
 /// What a run cost, for `--stats`.
@@ -96,8 +99,9 @@ impl Job<'_> {
         } else {
             0
         };
-        // A render in rounds keeps each pixel's samples between rounds.
-        let rounds = if self.budget.is_some() {
+        // A render in rounds keeps each pixel's samples between rounds
+        // (and `--denoise` keeps their mean radiance, counted in its bytes).
+        let rounds = if self.budget.is_some() || self.keeps_radiance() {
             u128::from(pixels) * u128::from(ROUND_STATE_BYTES)
         } else {
             0
@@ -176,7 +180,8 @@ impl Job<'_> {
             drop(spinner);
             let total_rows = region.height.saturating_mul(cameras.len() as u32);
             // Every round of a render in rounds goes over the rows again.
-            let most = self.budget.map_or(1, |b| b.rounds.most);
+            let in_rounds = self.budget.is_some() || self.keeps_radiance();
+            let most = if in_rounds { self.rounds_most } else { 1 };
             let total_rows = total_rows.saturating_mul(most);
             let progress = Progress::rows(total_rows);
             let mut totals = Totals {
@@ -206,8 +211,15 @@ impl Job<'_> {
                 if self.denoise {
                     let started = Instant::now();
                     let (scene, pixels) = (built.scene(), &mut rendered.pixels);
-                    let denoised =
-                        denoise_flag::apply(scene, camera, self.options, region, threaded, pixels);
+                    let radiance = rendered.radiance.as_deref();
+                    let denoised = denoise_flag::apply(
+                        scene,
+                        camera,
+                        self.options,
+                        region,
+                        threaded,
+                        (pixels, radiance),
+                    );
                     if let Err(e) = denoised {
                         progress.finish();
                         return Err(e);
@@ -241,25 +253,37 @@ impl Job<'_> {
     ) -> Result<(Rendered, Option<RoundsDone>), String> {
         let (region, options) = (self.region, self.options);
         let threaded = self.threads != Some(1);
-        match &self.budget {
-            None => built
-                .render_with(materials, camera, region, options, threaded, progress)
-                .map(|r| (r, None)),
-            Some(budget) => {
-                let mut keep_going = budget.keep_going();
-                built
-                    .render_in_rounds(
-                        materials,
-                        camera,
-                        region,
-                        options,
-                        threaded,
-                        progress,
-                        &mut keep_going,
-                    )
-                    .map(|(r, done)| (r, Some(done)))
+        let keep_radiance = self.keeps_radiance();
+        let mut keep_going: Box<dyn FnMut(u32) -> bool> = match &self.budget {
+            None if !keep_radiance => {
+                return built
+                    .render_with(materials, camera, region, options, threaded, progress)
+                    .map(|r| (r, None));
             }
-        }
+            // Every round, for the radiance the samples leave behind.
+            None => Box::new(|_| true),
+            Some(budget) => Box::new(budget.keep_going()),
+        };
+        let rounds = built.render_in_rounds(
+            materials,
+            camera,
+            region,
+            options,
+            threaded,
+            progress,
+            &mut *keep_going,
+            keep_radiance,
+        )?;
+        // Without a budget the rounds are an implementation detail.
+        Ok((rounds.0, self.budget.is_some().then_some(rounds.1)))
+    }
+
+    /// Whether the render keeps each pixel's mean radiance: for
+    /// `--denoise`, which reads it as high dynamic range color, unless the
+    /// background is transparent (the mean there is the color times its
+    /// coverage, where the bytes hold the color).
+    fn keeps_radiance(&self) -> bool {
+        self.denoise && self.options.background != Background::Transparent
     }
 
     /// Prints `--stats`: what the run cost, the `plan`'s effects, the

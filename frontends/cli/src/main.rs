@@ -115,6 +115,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
         tile,
         denoise: args.denoise,
         budget: Budget::of(args.time_limit, &plan),
+        rounds_most: voxtrace::Rounds::of(&plan).most,
     };
     job.check_memory(args.max_memory)?;
     let totals = job.render_all(&cameras, out, &paths)?;

@@ -77,6 +77,10 @@ pub struct Rendered {
     /// Wall time of the render alone (no allocation of the scene, no
     /// encoding).
     pub elapsed: Duration,
+    /// Each pixel's mean radiance (three `f32`, linear, not clamped to
+    /// white), when a render in rounds was asked to keep it and its pixels
+    /// are path-traced; `None` otherwise.
+    pub radiance: Option<Vec<f32>>,
 }
 
 impl BuiltScene {
@@ -199,7 +203,8 @@ impl BuiltScene {
     /// samples left, says whether another round begins. `progress` hears
     /// of the rows of every round. Returns the rounds taken beside the
     /// frame, which is the one-pass frame of `voxtrace::Rounds`'
-    /// options after them.
+    /// options after them. With `keep_radiance`, the frame's mean radiance
+    /// comes back too (for the denoiser) where it is path-traced.
     ///
     /// # Errors
     /// As [`BuiltScene::render_with`]; also when the pixels' state
@@ -214,6 +219,7 @@ impl BuiltScene {
         threaded: bool,
         progress: &(dyn Fn(u32) + Sync),
         keep_going: &mut dyn FnMut(u32) -> bool,
+        keep_radiance: bool,
     ) -> Result<(Rendered, RoundsDone), String> {
         let job = RenderJob {
             camera,
@@ -222,7 +228,11 @@ impl BuiltScene {
             threaded,
             progress,
         };
-        let (rendered, done) = self.run(materials, &job, Pass::Rounds(keep_going))?;
+        let pass = Pass::Rounds {
+            keep_going,
+            keep_radiance,
+        };
+        let (rendered, done) = self.run(materials, &job, pass)?;
         Ok((
             rendered,
             done.expect("a render in rounds reports its rounds"),
@@ -267,9 +277,12 @@ struct RenderJob<'a> {
 enum Pass<'k> {
     /// Every pixel's samples at once.
     Once,
-    /// In rounds over the whole region while the callback, asked after
-    /// each round, says so.
-    Rounds(&'k mut dyn FnMut(u32) -> bool),
+    /// In rounds over the whole region while `keep_going`, asked after
+    /// each round, says so; the mean radiance kept with `keep_radiance`.
+    Rounds {
+        keep_going: &'k mut dyn FnMut(u32) -> bool,
+        keep_radiance: bool,
+    },
 }
 
 impl RenderJob<'_> {
@@ -287,7 +300,7 @@ impl RenderJob<'_> {
             threaded,
             progress,
         } = *self;
-        let between = matches!(pass, Pass::Rounds(_));
+        let between = matches!(pass, Pass::Rounds { .. });
         let no_memory = || {
             format!(
                 "out of memory: cannot allocate a {}x{} image{}",
@@ -303,7 +316,7 @@ impl RenderJob<'_> {
         region.validate(camera).map_err(|e| e.to_string())?;
         let area = region.area().map_err(|e| e.to_string())?;
         let started = Instant::now();
-        let (pixels, rays, done) = match pass {
+        let (pixels, rays, done, radiance) = match pass {
             Pass::Once if threaded => {
                 // Zeroed on the render's own pool (this runs inside its `install`).
                 let frame = Framebuffer::new_parallel(region.width, region.height)
@@ -311,7 +324,7 @@ impl RenderJob<'_> {
                 let rays =
                     render_parallel_with_progress(scene, camera, options, region, &frame, progress)
                         .map_err(|e| e.to_string())?;
-                (frame.into_pixels(), rays, None)
+                (frame.into_pixels(), rays, None, None)
             }
             Pass::Once => {
                 // The scalar path, a band of rows at a time for the progress
@@ -330,9 +343,12 @@ impl RenderJob<'_> {
                         .map_err(|e| e.to_string())?;
                     progress(rect.height);
                 }
-                (pixels, rays, None)
+                (pixels, rays, None, None)
             }
-            Pass::Rounds(keep_going) => {
+            Pass::Rounds {
+                keep_going,
+                keep_radiance,
+            } => {
                 let mut state = filled(area, PixelSamples::default()).ok_or_else(no_memory)?;
                 let (pixels, done) = if threaded {
                     let frame = Framebuffer::new_parallel(region.width, region.height)
@@ -361,13 +377,24 @@ impl RenderJob<'_> {
                     .map_err(|e| e.to_string())?;
                     (pixels, done)
                 };
-                (pixels, done.rays, Some(done))
+                // Every pixel path-traced, or none (a face-shaded frame).
+                let radiance = keep_radiance
+                    .then(|| {
+                        let means: Option<Vec<[f32; 3]>> = state
+                            .iter()
+                            .map(|p| p.mean_radiance().map(|m| m.to_array()))
+                            .collect();
+                        means.map(|m| m.into_flattened())
+                    })
+                    .flatten();
+                (pixels, done.rays, Some(done), radiance)
             }
         };
         let rendered = Rendered {
             pixels,
             rays,
             elapsed: started.elapsed(),
+            radiance,
         };
         Ok((rendered, done))
     }

@@ -12,6 +12,8 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use voxtrace::{render_parallel, Adaptive, Framebuffer, Rect, RenderOptions};
+#[cfg(feature = "denoise")]
+use voxtrace::{render_parallel_in_rounds, PixelSamples};
 
 use crate::measure::{count_of, format_ms, median_ms};
 use crate::path_accuracy::{self, PathScene};
@@ -161,27 +163,36 @@ fn measure(
     // pixels.
     let run_row = |sampling: Sampling| -> Result<(Duration, u64, Vec<u32>), String> {
         let options = sampling.options(scene.options);
-        let (took, primary) = render(&options)?;
-        let image = frame.to_vec();
         #[cfg(feature = "denoise")]
-        let (took, image) = match sampling {
-            Sampling::Denoised(_) => {
-                let mut image = image;
-                let started = Instant::now();
-                let region = Rect::full(camera);
-                let guides = voxtrace_cli::guides::render_guides(
-                    scene.scene,
-                    camera,
-                    &options,
-                    region,
-                    true,
-                );
-                voxtrace_cli::denoise::denoise(&mut image, width, height, &guides)?;
-                (took + started.elapsed(), image)
-            }
-            _ => (took, image),
-        };
-        Ok((took, primary, image))
+        if let Sampling::Denoised(_) = sampling {
+            // As the CLI does: rendered in rounds, keeping each pixel's
+            // mean radiance for the filter.
+            let started = Instant::now();
+            let region = Rect::full(camera);
+            let mut state = vec![PixelSamples::default(); (width * height) as usize];
+            let done = render_parallel_in_rounds(
+                scene.scene,
+                camera,
+                &options,
+                region,
+                &frame,
+                &mut state,
+                &|_| {},
+                |_| true,
+            )
+            .map_err(|e| e.to_string())?;
+            let radiance: Vec<f32> = state
+                .iter()
+                .flat_map(|p| p.mean_radiance().unwrap_or_default().to_array())
+                .collect();
+            let mut image = frame.to_vec();
+            let guides =
+                voxtrace_cli::guides::render_guides(scene.scene, camera, &options, region, true);
+            voxtrace_cli::denoise::denoise(&mut image, Some(&radiance), width, height, &guides)?;
+            return Ok((started.elapsed(), done.rays.primary_rays, image));
+        }
+        let (took, primary) = render(&options)?;
+        Ok((took, primary, frame.to_vec()))
     };
     let rows_sampled = samplings(plan);
     // An untimed pass warms the caches and keeps each row's frame and rays:
