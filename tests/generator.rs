@@ -151,6 +151,7 @@ fn a_box_empty_in_any_axis_is_empty() {
         (IVec3::new(0, -9, 0), IVec3::new(4, -9, 4)),
         (IVec3::new(0, 5, 0), IVec3::new(4, -3, 4)),
         (IVec3::new(3, 0, 0), IVec3::new(3, 10, 4)),
+        (IVec3::new(0, i32::MIN, 0), IVec3::new(4, i32::MIN, 4)),
     ] {
         assert_eq!(
             g.classify(IAabb::new(min, max)),

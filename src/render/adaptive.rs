@@ -1,6 +1,6 @@
 //! Adaptive sampling of path-traced pixels: samples taken in rounds until
-//! the pixel's own estimate of its noise is below a threshold, or a
-//! maximum is reached.
+//! another sample would take less than a threshold off the pixel's
+//! estimated error, or a maximum is reached.
 //!
 //! The decision to stop reads only the samples of the pixel it is about,
 //! and a pixel's samples depend only on the pixel and the sample index, so

@@ -141,8 +141,8 @@ pub struct RenderOptions {
     /// and so does a path-traced frame's without `adaptive`.
     pub samples: u16,
     /// Adaptive sampling of path-traced frames: each pixel takes samples
-    /// until its noise estimate is below a threshold (`samples` is then
-    /// unused). Face-shaded, flat and debug frames ignore it and keep their
+    /// until another would take less than a threshold off its estimated
+    /// error (`samples` is then unused). Face-shaded, flat and debug frames ignore it and keep their
     /// pixels. Off when `None`.
     pub adaptive: Option<Adaptive>,
     /// Distance fog, off when `None`.

@@ -174,10 +174,11 @@ impl VoxelSource for VoxelGenerator {
     /// between 0 and `HEIGHT` lie wholly in the sky or the ground, and
     /// filling them cost far more than these noise evaluations.
     fn classify(&self, region: IAabb) -> Region {
-        let (lo, hi) = (region.min.y, region.max.y - 1);
-        if lo > HEIGHT || region.is_empty() {
+        if region.is_empty() || region.min.y > HEIGHT {
             return Region::Empty;
         }
+        // Not empty: max.y - 1 cannot overflow.
+        let (lo, hi) = (region.min.y, region.max.y - 1);
         let one_band = band(lo) == band(hi);
         if hi <= 0 && one_band {
             return Region::Solid(band(lo));

@@ -183,8 +183,8 @@ pub struct Args {
     /// --bounces): each pixel takes 16 to 64 samples in rounds of 16 (32 to
     /// 256 in rounds of 32 with --quality final), stopping once another
     /// sample would take less than X off its error: once the spread of its
-    /// samples (per channel, clamped to white, in units of white) over
-    /// their count is below X [default: 0.005, final 0.0015; the default
+    /// samples (clamped to white, in units of white, the channels'
+    /// variances averaged) over their count is below X [default: 0.005, final 0.0015; the default
     /// without --spp].
     #[arg(long, value_name = "X", value_parser = parse_threshold, allow_hyphen_values = true, conflicts_with = "spp")]
     pub noise_threshold: Option<f32>,

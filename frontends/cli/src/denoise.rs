@@ -82,7 +82,7 @@ impl Device {
 /// pixels.
 pub fn denoise(
     pixels: &mut [u32],
-    radiance: Option<&[f32]>,
+    radiance: Option<Vec<f32>>,
     width: u32,
     height: u32,
     guides: &Guides,
@@ -91,10 +91,11 @@ pub fn denoise(
     assert_eq!(pixels.len(), w * h, "pixels of another size");
     assert_eq!(guides.albedo.len(), 3 * w * h, "guides of another size");
     assert_eq!(guides.normal.len(), 3 * w * h, "guides of another size");
+    let hdr = radiance.is_some();
     let mut color: Vec<f32> = match radiance {
         Some(radiance) => {
             assert_eq!(radiance.len(), 3 * w * h, "radiance of another size");
-            radiance.to_vec()
+            radiance
         }
         None => pixels
             .iter()
@@ -125,7 +126,7 @@ pub fn denoise(
         image(c"output", color_ptr);
         image(c"albedo", guides.albedo.as_ptr().cast_mut().cast());
         image(c"normal", guides.normal.as_ptr().cast_mut().cast());
-        sys::oidnSetFilterBool(filter.0, c"hdr".as_ptr(), radiance.is_some());
+        sys::oidnSetFilterBool(filter.0, c"hdr".as_ptr(), hdr);
         sys::oidnSetFilterBool(filter.0, c"srgb".as_ptr(), false);
         sys::oidnSetFilterBool(filter.0, c"cleanAux".as_ptr(), true);
         let quality = sys::OIDNQuality_OIDN_QUALITY_HIGH;

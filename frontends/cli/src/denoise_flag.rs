@@ -5,10 +5,11 @@
 use voxtrace::{Camera, Rect, RenderOptions, Scene};
 
 /// Bytes per pixel `--denoise` holds beside the frame: the albedo and
-/// normal guides, the mean radiance the render keeps and the color the
-/// filter reads and writes, three `f32` each. (Open Image Denoise's own working memory is not counted: it
+/// normal guides and the color the filter reads and writes (the mean
+/// radiance the render kept, or the bytes), three `f32` each. (The
+/// samples a render in rounds keeps are counted apart.) (Open Image Denoise's own working memory is not counted: it
 /// filters in tiles of bounded size.)
-pub const BYTES_PER_PIXEL: u128 = 4 * 3 * 4;
+pub const BYTES_PER_PIXEL: u128 = 3 * 3 * 4;
 
 /// Refuses `--denoise` (`asked`) in one line where it cannot run: in a
 /// build without the `denoise` feature (saying how to get one), and with
@@ -52,7 +53,7 @@ pub fn apply(
     options: &RenderOptions,
     region: Rect,
     threaded: bool,
-    (pixels, radiance): (&mut [u32], Option<&[f32]>),
+    (pixels, radiance): (&mut [u32], Option<Vec<f32>>),
 ) -> Result<(), String> {
     let guides = voxtrace_cli::guides::render_guides(scene, camera, options, region, threaded);
     let (width, height) = (region.width, region.height);
@@ -71,7 +72,7 @@ pub fn apply(
     _options: &RenderOptions,
     _region: Rect,
     _threaded: bool,
-    _frame: (&mut [u32], Option<&[f32]>),
+    _frame: (&mut [u32], Option<Vec<f32>>),
 ) -> Result<(), String> {
     check(true, false)
 }

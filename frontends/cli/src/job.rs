@@ -3,10 +3,12 @@
 //! and written, and the `--stats` of it all.
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU32, Ordering};
 use std::time::{Duration, Instant};
 
 use voxtrace::{
-    Background, Camera, CameraSettings, EffectPlan, RayStats, Rect, RenderOptions, RoundsDone,
+    Background, Camera, CameraSettings, EffectPlan, RayStats, Rect, RenderOptions, Rounds,
+    RoundsDone,
 };
 use voxtrace_cli::atomic::AtomicFile;
 use voxtrace_cli::{on_threads, say, Backend, BuiltScene, Rendered, ROUND_STATE_BYTES};
@@ -50,9 +52,9 @@ pub struct Job<'a> {
     /// `--time-limit` of a path-traced frame: each frame's samples taken
     /// in rounds until the budget is spent.
     pub budget: Option<Budget>,
-    /// The most rounds a render in rounds of a frame takes (its plan's):
-    /// how often such a render goes over the rows.
-    pub rounds_most: u32,
+    /// How a path-traced frame's samples divide into rounds (its plan's);
+    /// `None` for a face-shaded frame.
+    pub rounds: Option<Rounds>,
 }
 
 /// What a run cost, for `--stats`.
@@ -101,7 +103,7 @@ impl Job<'_> {
         };
         // A render in rounds keeps each pixel's samples between rounds
         // (and `--denoise` keeps their mean radiance, counted in its bytes).
-        let rounds = if self.budget.is_some() || self.keeps_radiance() {
+        let rounds = if self.renders_in_rounds() {
             u128::from(pixels) * u128::from(ROUND_STATE_BYTES)
         } else {
             0
@@ -180,8 +182,7 @@ impl Job<'_> {
             drop(spinner);
             let total_rows = region.height.saturating_mul(cameras.len() as u32);
             // Every round of a render in rounds goes over the rows again.
-            let in_rounds = self.budget.is_some() || self.keeps_radiance();
-            let most = if in_rounds { self.rounds_most } else { 1 };
+            let most = self.rows_passes();
             let total_rows = total_rows.saturating_mul(most);
             let progress = Progress::rows(total_rows);
             let mut totals = Totals {
@@ -196,8 +197,17 @@ impl Job<'_> {
             };
             for (frame, path) in cameras.iter().zip(paths) {
                 let camera = &frame.camera;
-                let advance = |rows| progress.advance(rows);
+                // The rows this frame reported: a render in rounds that
+                // ends early (or the scalar path's last round) reports
+                // fewer than it was counted for, and the rest are added.
+                let reported = AtomicU32::new(0);
+                let advance = |rows| {
+                    reported.fetch_add(rows, Ordering::Relaxed);
+                    progress.advance(rows);
+                };
                 let rendered = self.render_one(&built, materials, camera, &advance);
+                let counted = region.height.saturating_mul(most);
+                progress.advance(counted.saturating_sub(reported.into_inner()));
                 let mut rendered = match rendered {
                     Ok((r, rounds)) => {
                         totals.rounds.extend(rounds);
@@ -211,7 +221,7 @@ impl Job<'_> {
                 if self.denoise {
                     let started = Instant::now();
                     let (scene, pixels) = (built.scene(), &mut rendered.pixels);
-                    let radiance = rendered.radiance.as_deref();
+                    let radiance = rendered.radiance.take();
                     let denoised = denoise_flag::apply(
                         scene,
                         camera,
@@ -242,8 +252,8 @@ impl Job<'_> {
     }
 
     /// Renders one frame's `camera` of `built` with `materials`, in
-    /// rounds under a budget (then also the rounds it took), reporting
-    /// finished rows to `progress`.
+    /// rounds under a budget (then also the rounds it took) or for
+    /// `--denoise`'s radiance, reporting finished rows to `progress`.
     fn render_one(
         &self,
         built: &BuiltScene,
@@ -283,7 +293,22 @@ impl Job<'_> {
     /// background is transparent (the mean there is the color times its
     /// coverage, where the bytes hold the color).
     fn keeps_radiance(&self) -> bool {
-        self.denoise && self.options.background != Background::Transparent
+        self.denoise && self.rounds.is_some() && self.options.background != Background::Transparent
+    }
+
+    /// Whether a frame renders in rounds: under a budget, or to keep its
+    /// radiance.
+    fn renders_in_rounds(&self) -> bool {
+        self.budget.is_some() || self.keeps_radiance()
+    }
+
+    /// How many times a frame's render goes over its rows: each round of
+    /// a render in rounds, else once.
+    fn rows_passes(&self) -> u32 {
+        match self.rounds {
+            Some(rounds) if self.renders_in_rounds() => rounds.most,
+            _ => 1,
+        }
     }
 
     /// Prints `--stats`: what the run cost, the `plan`'s effects, the

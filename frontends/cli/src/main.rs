@@ -115,7 +115,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
         tile,
         denoise: args.denoise,
         budget: Budget::of(args.time_limit, &plan),
-        rounds_most: voxtrace::Rounds::of(&plan).most,
+        rounds: (plan.look == voxtrace::Look::Path).then(|| voxtrace::Rounds::of(&plan)),
     };
     job.check_memory(args.max_memory)?;
     let totals = job.render_all(&cameras, out, &paths)?;

@@ -9,13 +9,12 @@ use std::time::{Duration, Instant};
 
 use clap::ValueEnum;
 
+use crate::render_job::{Pass, RenderJob};
 use crate::units::human_bytes;
 use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{
-    render_parallel_in_rounds, render_parallel_with_progress, render_region,
-    render_region_in_rounds, Camera, DenseScene, Error, Framebuffer, IAabb, Node, OctreeScene,
-    PixelSamples, RayStats, Rect, RenderOptions, RoundsDone, Scene, SceneMaterials, VoxelGenerator,
-    VoxelSource, WithMaterials,
+    Camera, DenseScene, Error, IAabb, Node, OctreeScene, PixelSamples, RayStats, Rect,
+    RenderOptions, RoundsDone, Scene, SceneMaterials, VoxelGenerator, VoxelSource, WithMaterials,
 };
 
 /// Which storage holds the voxels.
@@ -263,150 +262,6 @@ impl BuiltScene {
 /// The bytes a render in rounds keeps per pixel between rounds, beside
 /// the frame ([`BuiltScene::render_in_rounds`]).
 pub const ROUND_STATE_BYTES: u64 = std::mem::size_of::<PixelSamples>() as u64;
-
-/// What [`BuiltScene::render_with`] renders, whatever the storage.
-struct RenderJob<'a> {
-    camera: &'a Camera,
-    region: Rect,
-    options: &'a RenderOptions,
-    threaded: bool,
-    progress: &'a (dyn Fn(u32) + Sync),
-}
-
-/// How a [`RenderJob`] takes its samples.
-enum Pass<'k> {
-    /// Every pixel's samples at once.
-    Once,
-    /// In rounds over the whole region while `keep_going`, asked after
-    /// each round, says so; the mean radiance kept with `keep_radiance`.
-    Rounds {
-        keep_going: &'k mut dyn FnMut(u32) -> bool,
-        keep_radiance: bool,
-    },
-}
-
-impl RenderJob<'_> {
-    /// Renders `scene` as it is, in `pass`; the rounds taken with
-    /// [`Pass::Rounds`].
-    fn run<S: Scene + Sync>(
-        &self,
-        scene: &S,
-        pass: Pass<'_>,
-    ) -> Result<(Rendered, Option<RoundsDone>), String> {
-        let RenderJob {
-            camera,
-            region,
-            options,
-            threaded,
-            progress,
-        } = *self;
-        let between = matches!(pass, Pass::Rounds { .. });
-        let no_memory = || {
-            format!(
-                "out of memory: cannot allocate a {}x{} image{}",
-                region.width,
-                region.height,
-                if between {
-                    " and its samples between rounds"
-                } else {
-                    ""
-                }
-            )
-        };
-        region.validate(camera).map_err(|e| e.to_string())?;
-        let area = region.area().map_err(|e| e.to_string())?;
-        let started = Instant::now();
-        let (pixels, rays, done, radiance) = match pass {
-            Pass::Once if threaded => {
-                // Zeroed on the render's own pool (this runs inside its `install`).
-                let frame = Framebuffer::new_parallel(region.width, region.height)
-                    .map_err(|_| no_memory())?;
-                let rays =
-                    render_parallel_with_progress(scene, camera, options, region, &frame, progress)
-                        .map_err(|e| e.to_string())?;
-                (frame.into_pixels(), rays, None, None)
-            }
-            Pass::Once => {
-                // The scalar path, a band of rows at a time for the progress
-                // callback (sixteen rows: the tiles primary rays are traced in).
-                const BAND: u32 = 16;
-                let mut pixels = filled(area, 0).ok_or_else(no_memory)?;
-                let mut rays = RayStats::default();
-                let bands = pixels.chunks_mut(region.width as usize * BAND as usize);
-                for (y, band) in (region.y..).step_by(BAND as usize).zip(bands) {
-                    let rect = Rect {
-                        y,
-                        height: (band.len() / region.width as usize) as u32,
-                        ..region
-                    };
-                    rays += render_region(scene, camera, options, rect, band)
-                        .map_err(|e| e.to_string())?;
-                    progress(rect.height);
-                }
-                (pixels, rays, None, None)
-            }
-            Pass::Rounds {
-                keep_going,
-                keep_radiance,
-            } => {
-                let mut state = filled(area, PixelSamples::default()).ok_or_else(no_memory)?;
-                let (pixels, done) = if threaded {
-                    let frame = Framebuffer::new_parallel(region.width, region.height)
-                        .map_err(|_| no_memory())?;
-                    let done = render_parallel_in_rounds(
-                        scene, camera, options, region, &frame, &mut state, progress, keep_going,
-                    )
-                    .map_err(|e| e.to_string())?;
-                    (frame.into_pixels(), done)
-                } else {
-                    let mut pixels = filled(area, 0).ok_or_else(no_memory)?;
-                    // The scalar path reports a round's rows when it ends.
-                    let keep_going = |n| {
-                        progress(region.height);
-                        keep_going(n)
-                    };
-                    let done = render_region_in_rounds(
-                        scene,
-                        camera,
-                        options,
-                        region,
-                        &mut pixels,
-                        &mut state,
-                        keep_going,
-                    )
-                    .map_err(|e| e.to_string())?;
-                    (pixels, done)
-                };
-                // Every pixel path-traced, or none (a face-shaded frame).
-                let radiance = keep_radiance
-                    .then(|| {
-                        let means: Option<Vec<[f32; 3]>> = state
-                            .iter()
-                            .map(|p| p.mean_radiance().map(|m| m.to_array()))
-                            .collect();
-                        means.map(|m| m.into_flattened())
-                    })
-                    .flatten();
-                (pixels, done.rays, Some(done), radiance)
-            }
-        };
-        let rendered = Rendered {
-            pixels,
-            rays,
-            elapsed: started.elapsed(),
-            radiance,
-        };
-        Ok((rendered, done))
-    }
-}
-
-/// `len` copies of `value`, or `None` where the memory is refused.
-fn filled<T: Clone>(len: usize, value: T) -> Option<Vec<T>> {
-    let mut items = Vec::new();
-    items.try_reserve_exact(len).ok()?;
-    items.resize(len, value);
-    Some(items)
-}
 
 #[cfg(test)]
 mod tests {

@@ -62,11 +62,11 @@ fn denoising_brings_a_noisy_path_traced_room_closer_to_its_reference() {
         assert!(radiance.iter().any(|&c| c > 1.0), "the lamp is above white");
         let guides = render_guides(scene.scene(), &camera, &options, full, true);
         let before = rmse(&noisy, &reference);
-        for hdr in [None, Some(&radiance[..])] {
+        for hdr in [None, Some(radiance.clone())] {
             let mut denoised = noisy.clone();
+            let input = if hdr.is_some() { "radiance" } else { "bytes" };
             denoise(&mut denoised, hdr, width, height, &guides).unwrap();
             let after = rmse(&denoised, &reference);
-            let input = if hdr.is_some() { "radiance" } else { "bytes" };
             println!("{samples} spp: rmse {before:.2} noisy, {after:.2} denoised from {input}");
             assert!(
                 after < 0.7 * before,

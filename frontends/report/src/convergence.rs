@@ -181,14 +181,12 @@ fn measure(
                 |_| true,
             )
             .map_err(|e| e.to_string())?;
-            let radiance: Vec<f32> = state
-                .iter()
-                .flat_map(|p| p.mean_radiance().unwrap_or_default().to_array())
-                .collect();
+            let radiance = voxtrace_cli::mean_radiance(&state)
+                .map_err(|e| format!("the frame's radiance: {e}"))?;
             let mut image = frame.to_vec();
             let guides =
                 voxtrace_cli::guides::render_guides(scene.scene, camera, &options, region, true);
-            voxtrace_cli::denoise::denoise(&mut image, Some(&radiance), width, height, &guides)?;
+            voxtrace_cli::denoise::denoise(&mut image, radiance, width, height, &guides)?;
             return Ok((started.elapsed(), done.rays.primary_rays, image));
         }
         let (took, primary) = render(&options)?;

@@ -26,6 +26,7 @@ pub(crate) mod bsdf;
 mod direct;
 mod glass;
 mod pixel;
+mod sobol;
 
 use glam::{IVec3, Vec3};
 
@@ -35,7 +36,7 @@ use crate::render::adaptive::Adaptive;
 use crate::render::camera::Camera;
 use crate::render::options::{Background, Bounces, Fog, RenderOptions};
 use crate::render::rays::{around, primary, secondary};
-use crate::render::sampling::{cosine_hemisphere, pixel_key, scrambled_sobol};
+use crate::render::sampling::{cosine_hemisphere, pixel_key};
 use crate::render::shade::{sky, SKY_HORIZON};
 use crate::render::stats::RayStats;
 use crate::scene::WalkMemory;
@@ -43,6 +44,7 @@ use crate::scene::{Reach, Scene};
 
 use bsdf::{glossy, microfacet};
 use glass::{through_glass, Glass};
+use sobol::scrambled_sobol;
 
 /// The most a sample's radiance may be, per channel: a cap on the rare
 /// path that finds a small bright emitter (a firefly), at 16 times white.
