@@ -184,8 +184,8 @@ pub struct Args {
     /// 256 in rounds of 32 with --quality final), stopping once another
     /// sample would take less than X off its error: once the spread of its
     /// samples (clamped to white, in units of white, the channels'
-    /// variances averaged) over their count is below X [default: 0.005, final 0.0015; the default
-    /// without --spp].
+    /// variances averaged) over their count is below X [default: 0.005,
+    /// final 0.0015; the default without --spp].
     #[arg(long, value_name = "X", value_parser = parse_threshold, allow_hyphen_values = true, conflicts_with = "spp")]
     pub noise_threshold: Option<f32>,
 

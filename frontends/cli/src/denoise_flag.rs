@@ -6,9 +6,10 @@ use voxtrace::{Camera, Rect, RenderOptions, Scene};
 
 /// Bytes per pixel `--denoise` holds beside the frame: the albedo and
 /// normal guides and the color the filter reads and writes (the mean
-/// radiance the render kept, or the bytes), three `f32` each. (The
-/// samples a render in rounds keeps are counted apart.) (Open Image Denoise's own working memory is not counted: it
-/// filters in tiles of bounded size.)
+/// radiance the render kept, or the bytes), three `f32` each. The
+/// samples a render in rounds keeps are counted apart, and Open Image
+/// Denoise's own working memory not at all: it filters in tiles of
+/// bounded size.
 pub const BYTES_PER_PIXEL: u128 = 3 * 3 * 4;
 
 /// Refuses `--denoise` (`asked`) in one line where it cannot run: in a

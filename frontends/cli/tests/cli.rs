@@ -319,12 +319,7 @@ fn errors_say_what_applies_and_print_nothing_before() {
 
 /// `key: value` lines of `--stats` as numbers.
 fn stat(stderr: &str, key: &str) -> u64 {
-    stderr
-        .lines()
-        .find_map(|l| l.strip_prefix(&format!("{key}: ")))
-        .unwrap_or_else(|| panic!("no {key} in {stderr}"))
-        .parse()
-        .unwrap()
+    common::run::stat(stderr, key).parse().unwrap()
 }
 
 fn stats_with(extra: &[&str]) -> String {
