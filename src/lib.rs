@@ -114,7 +114,7 @@ pub use render::scalar::{
 pub use render::shade::{pack, shade, sky, unpack, FLAT_SKY, SKY_HORIZON, SKY_ZENITH};
 pub use render::stats::{RayStats, Rect};
 pub use render::view::{Orbit, Projection, ViewPreset};
-pub use scene::{Hit, Reach, Scene, Traced, Visit, WalkMemory};
+pub use scene::{Hit, Reach, Scene, Traced, Visit, WalkMemory, PACKET};
 pub use source::noise::{Perlin, SplitMix64};
 pub use source::terrain::{VoxelGenerator, GRASS, HEIGHT, MOUNTAIN, ROUGHNESS, SCALE, SNOW, WATER};
 #[cfg(feature = "vox")]

@@ -49,6 +49,9 @@ impl Hit {
     }
 }
 
+/// Rays in a packet ([`Scene::trace_packet`]): a 4x4 block of pixels.
+pub const PACKET: usize = 16;
+
 /// A hit (or miss) together with the number of walk moves it took.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Traced {
@@ -226,6 +229,24 @@ pub trait Scene {
         0.0
     }
 
+    /// The hits of a packet of rays from one camera, each traced over
+    /// [`Reach::after`]`(clear)`: for every lane `i` whose bit is set in
+    /// the answer, `hits[i]` is exactly the hit [`Scene::trace_with`]
+    /// gives `rays[i]` over that reach, bit for bit. Lanes left unset
+    /// (their `hits` untouched) are the caller's to trace one by one.
+    /// What lets a storage walk coherent rays together; the default
+    /// answers no lane.
+    #[inline]
+    fn trace_packet(
+        &self,
+        rays: &[Ray; PACKET],
+        clear: f32,
+        hits: &mut [Option<Hit>; PACKET],
+    ) -> u16 {
+        let _ = (rays, clear, hits);
+        0
+    }
+
     /// Bytes of voxel storage this scene holds (arrays and palette).
     fn storage_bytes(&self) -> usize;
 
@@ -292,6 +313,16 @@ macro_rules! forward_tracing {
         #[inline]
         fn clear_distance(&self, frustum: &$crate::frustum::Frustum) -> f32 {
             $inner(self).clear_distance(frustum)
+        }
+
+        #[inline]
+        fn trace_packet(
+            &self,
+            rays: &[$crate::geom::Ray; $crate::scene::PACKET],
+            clear: f32,
+            hits: &mut [Option<$crate::scene::Hit>; $crate::scene::PACKET],
+        ) -> u16 {
+            $inner(self).trace_packet(rays, clear, hits)
         }
 
         fn storage_bytes(&self) -> usize {

@@ -7,6 +7,7 @@
 //! the same pixels: the scalar, cropped and threaded renders stay
 //! byte-identical.
 
+use crate::geom::Ray;
 use crate::render::camera::Camera;
 #[cfg(feature = "path")]
 use crate::render::rounds::PixelSamples;
@@ -14,8 +15,7 @@ use crate::render::shader::Kernel;
 #[cfg(feature = "path")]
 use crate::render::shader::Resumable;
 use crate::render::stats::{RayStats, Rect};
-use crate::scene::Scene;
-use crate::scene::WalkMemory;
+use crate::scene::{Hit, Reach, Scene, WalkMemory, PACKET};
 
 /// Side of a tile in pixels: 256 rays share one walk of the tree's empty
 /// space. Measured at 1920x1080 on the size-250 terrain (with the first,
@@ -50,17 +50,86 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
             let beam = kernel.uses_beam() && x1 > x0 && y1 > y0;
             let frustum = beam.then(|| camera.tile_frustum(x0, y0, x1, y1)).flatten();
             let t_start = frustum.map_or(0.0, |f| scene.clear_distance(&f));
-            for dy in dy0..dy1 {
-                for dx in dx0..dx1 {
-                    let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
-                    let (rgba, rays) = kernel.pixel(scene, x, y, t_start, &mut memory);
-                    put(dx, dy, rgba);
-                    stats += rays;
-                }
+            let tile = Tile { dx0, dy0, dx1, dy1 };
+            if kernel.one_ray() && beam {
+                let memory = &mut memory;
+                in_packets(
+                    kernel, scene, camera, rect, tile, t_start, memory, &mut put, &mut stats,
+                );
+                continue;
+            }
+            for (dx, dy) in tile.offsets() {
+                let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
+                let (rgba, rays) = kernel.pixel(scene, x, y, t_start, &mut memory);
+                put(dx, dy, rgba);
+                stats += rays;
             }
         }
     }
     stats
+}
+
+/// Side of a packet's block of pixels: [`PACKET`] rays.
+const BLOCK: u32 = 4;
+const _: () = assert!((BLOCK * BLOCK) as usize == PACKET);
+
+/// The pixels of `tile` (of `rect`) for a [`Kernel::one_ray`] kernel: its
+/// whole 4x4 blocks traced as packets, the lanes a packet leaves and the
+/// pixels of partial blocks one ray at a time, each shaded by the kernel.
+#[allow(clippy::too_many_arguments)]
+fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
+    kernel: &K,
+    scene: &'s S,
+    camera: &Camera,
+    rect: Rect,
+    tile: Tile,
+    t_start: f32,
+    memory: &mut WalkMemory<'s>,
+    put: &mut impl FnMut(u32, u32, u32),
+    stats: &mut RayStats,
+) {
+    let reach = Reach::after(t_start);
+    let mut one = |dx: u32, dy: u32, ray: &Ray, hit: Option<Option<Hit>>, memory: &mut _| {
+        let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
+        let hit = hit.unwrap_or_else(|| scene.trace_with(ray, reach, memory, None).hit);
+        let (rgba, rays) = kernel.shade(scene, ray, hit, (x, y), memory);
+        put(dx, dy, rgba);
+        *stats += rays;
+    };
+    for by in (tile.dy0..tile.dy1).step_by(BLOCK as usize) {
+        for bx in (tile.dx0..tile.dx1).step_by(BLOCK as usize) {
+            let whole = by + BLOCK <= tile.dy1 && bx + BLOCK <= tile.dx1;
+            let block = Tile {
+                dx0: bx,
+                dy0: by,
+                dx1: (bx + BLOCK).min(tile.dx1),
+                dy1: (by + BLOCK).min(tile.dy1),
+            };
+            let ray_at = |(dx, dy): (u32, u32)| {
+                camera.get_ray(rect.x.wrapping_add(dx), rect.y.wrapping_add(dy))
+            };
+            if !whole {
+                for offset in block.offsets() {
+                    one(offset.0, offset.1, &ray_at(offset), None, memory);
+                }
+                continue;
+            }
+            let rays: [Ray; PACKET] =
+                core::array::from_fn(|i| ray_at((bx + i as u32 % BLOCK, by + i as u32 / BLOCK)));
+            let mut hits = [None; PACKET];
+            let answered = scene.trace_packet(&rays, t_start, &mut hits);
+            for (i, ray) in rays.iter().enumerate() {
+                let hit = (answered >> i & 1 != 0).then_some(hits[i]);
+                one(
+                    bx + i as u32 % BLOCK,
+                    by + i as u32 / BLOCK,
+                    ray,
+                    hit,
+                    memory,
+                );
+            }
+        }
+    }
 }
 
 /// Continues every pixel of `rect` to the end of round `round` (from 1)
@@ -111,7 +180,6 @@ pub(crate) fn resume_tiles<K: Resumable, S: Scene + ?Sized>(
 
 /// One tile: its pixels' offsets inside the rectangle, `dx0..dx1` by
 /// `dy0..dy1`.
-#[cfg(feature = "path")]
 #[derive(Clone, Copy)]
 struct Tile {
     dx0: u32,
@@ -120,7 +188,6 @@ struct Tile {
     dy1: u32,
 }
 
-#[cfg(feature = "path")]
 impl Tile {
     /// The tile's pixel offsets, row-major.
     fn offsets(self) -> impl Iterator<Item = (u32, u32)> {

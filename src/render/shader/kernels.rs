@@ -23,7 +23,7 @@ use crate::render::shader::{FrameJob, Kernel, Shader};
 use crate::render::shader::{Resumable, RoundsJob};
 use crate::render::stats::RayStats;
 use crate::scene::WalkMemory;
-use crate::scene::{Reach, Scene};
+use crate::scene::{Hit, Reach, Scene};
 
 impl<'m> Shader<'_, 'm> {
     /// Runs `job` with the kernel compiled for this frame's effects.
@@ -175,6 +175,22 @@ impl Kernel for Flat<'_, '_, '_> {
         let hit = scene
             .trace_with(&ray, Reach::after(t_start), memory, None)
             .hit;
+        self.shade(scene, &ray, hit, (x, y), memory)
+    }
+
+    fn one_ray(&self) -> bool {
+        true
+    }
+
+    #[inline]
+    fn shade<'s, S: Scene + ?Sized>(
+        &self,
+        _: &'s S,
+        _: &Ray,
+        hit: Option<Hit>,
+        _: (u32, u32),
+        _: &mut WalkMemory<'s>,
+    ) -> (u32, RayStats) {
         let rgba = hit.map_or_else(|| self.0.miss(FLAT_SKY), |h| pack(h.voxel.color));
         (rgba, primary(hit.as_ref()))
     }
@@ -246,14 +262,12 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats) {
         let camera = self.0.camera;
-        // (Occlusion and fog test their settings anyway.)
-        if !(AA && (EXACT || self.0.options.samples > 1)) {
+        if self.one_ray() {
             let ray = camera.get_ray(x, y);
-            let (color, stats) = self.sample(scene, &ray, t_start, x, y, 0, memory);
-            if stats.primary_hits == 0 {
-                return (self.0.miss(color), stats);
-            }
-            return (pack(color), stats);
+            let hit = scene
+                .trace_with(&ray, Reach::after(t_start), memory, None)
+                .hit;
+            return self.shade(scene, &ray, hit, (x, y), memory);
         }
         let samples = u32::from(self.0.options.samples);
         let transparent = self.0.options.background == Background::Transparent;
@@ -276,6 +290,28 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         let hits = stats.primary_hits as u32;
         (pack_mean(samples, hits, transparent, mean_of), stats)
     }
+
+    /// One sample per pixel (occlusion and fog test their settings
+    /// anyway).
+    fn one_ray(&self) -> bool {
+        !(AA && (EXACT || self.0.options.samples > 1))
+    }
+
+    #[inline]
+    fn shade<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        ray: &Ray,
+        hit: Option<Hit>,
+        (x, y): (u32, u32),
+        memory: &mut WalkMemory<'s>,
+    ) -> (u32, RayStats) {
+        let (color, stats) = self.shade_sample(scene, ray, hit, x, y, 0, memory);
+        if stats.primary_hits == 0 {
+            return (self.0.miss(color), stats);
+        }
+        (pack(color), stats)
+    }
 }
 
 impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const EXACT: bool>
@@ -295,10 +331,26 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         sample: u32,
         memory: &mut WalkMemory<'s>,
     ) -> (U8Vec3, RayStats) {
-        let shader = self.0;
         let hit = scene
             .trace_with(ray, Reach::after(t_start), memory, None)
             .hit;
+        self.shade_sample(scene, ray, hit, x, y, sample, memory)
+    }
+
+    /// [`Lit::sample`] of the camera ray `ray` whose hit is `hit`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn shade_sample<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        ray: &Ray,
+        hit: Option<Hit>,
+        x: u32,
+        y: u32,
+        sample: u32,
+        memory: &mut WalkMemory<'s>,
+    ) -> (U8Vec3, RayStats) {
+        let shader = self.0;
         let mut stats = primary(hit.as_ref());
         let Some(hit) = hit else {
             return (sky(ray.dir()), stats);

@@ -24,6 +24,7 @@ use core::marker::PhantomData;
 
 use glam::{U8Vec3, Vec3};
 
+use crate::geom::Ray;
 #[cfg(feature = "path")]
 use crate::material::Materials;
 use crate::material::SceneMaterials;
@@ -37,8 +38,7 @@ use crate::render::plan::{EffectPlan, Look};
 use crate::render::rounds::PixelSamples;
 use crate::render::shade::{face_weights, pack};
 use crate::render::stats::RayStats;
-use crate::scene::Scene;
-use crate::scene::WalkMemory;
+use crate::scene::{Hit, Scene, WalkMemory};
 
 mod kernels;
 #[cfg(all(test, feature = "alloc"))]
@@ -150,6 +150,30 @@ pub(crate) trait Kernel: Sync {
     /// debug view walks from the camera to show every box).
     fn uses_beam(&self) -> bool {
         true
+    }
+
+    /// Whether pixel `(x, y)` is one primary ray, the camera's
+    /// `get_ray(x, y)` over the tile's clear distance, and
+    /// [`Kernel::shade`] of its hit: then tiles trace their pixels' rays
+    /// in packets ([`Scene::trace_packet`]).
+    fn one_ray(&self) -> bool {
+        false
+    }
+
+    /// Pixel `(x, y)` of a kernel whose pixels are [`Kernel::one_ray`],
+    /// given its primary ray and that ray's hit: the same pixel and rays
+    /// as [`Kernel::pixel`]. The default (for kernels whose pixels are
+    /// not one ray) traces the pixel again.
+    fn shade<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        ray: &Ray,
+        hit: Option<Hit>,
+        (x, y): (u32, u32),
+        memory: &mut WalkMemory<'s>,
+    ) -> (u32, RayStats) {
+        let _ = (ray, hit);
+        self.pixel(scene, x, y, 0.0, memory)
     }
 }
 

@@ -15,7 +15,7 @@ use glam::IVec3;
 
 use crate::frustum::Frustum;
 use crate::geom::{IAabb, Ray};
-use crate::scene::{Reach, Scene, Traced, Visit, WalkMemory};
+use crate::scene::{Hit, Reach, Scene, Traced, Visit, WalkMemory, PACKET};
 use crate::storage::octree::node::{brick_local, child_offset, NodeKind, BRICK};
 use crate::voxel::Palette;
 
@@ -28,6 +28,7 @@ pub(crate) mod build_par;
 pub(crate) mod grid;
 mod memory;
 pub(crate) mod node;
+mod packet;
 pub(crate) mod trace;
 
 /// How many nodes and material bytes an octree needs
@@ -162,6 +163,15 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
 
     fn clear_distance(&self, frustum: &Frustum) -> f32 {
         self.beam_distance(frustum)
+    }
+
+    fn trace_packet(
+        &self,
+        rays: &[Ray; PACKET],
+        clear: f32,
+        hits: &mut [Option<Hit>; PACKET],
+    ) -> u16 {
+        self.packet(rays, clear, hits)
     }
 
     fn storage_bytes(&self) -> usize {

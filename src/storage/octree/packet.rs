@@ -1,0 +1,356 @@
+//! Tracing a packet of rays through an `OctreeScene`: sixteen rays from
+//! one origin, whose directions share their signs (a 4x4 block of a
+//! camera's pixels), taken down the tree together, front to back.
+//!
+//! Each lane keeps the times at which its ray crosses the planes of the
+//! cube the packet is in, as the scalar walk computes every crossing:
+//! `(plane - origin) * inv_dir`, one rounding each. A child's slabs are
+//! its parent's planes on one side and the midplanes on the other, so a
+//! node costs three products per lane (its midplanes) and each child a
+//! few maxima and minima; the lanes that enter a child go down into it
+//! together, in the order every ray of the packet meets the children
+//! (octants by index with the down-moving axes flipped). A lane leaves
+//! the packet at its first solid voxel.
+//!
+//! # Why the hits are the scalar walk's, bit for bit
+//! The walk is in a cell from the key that enters it (the latest of its
+//! near-plane crossings, ties to the higher axis) until the key that
+//! leaves it (the earliest far-plane crossing, ties to the lower axis),
+//! and visits it exactly when the first comes before the second. A
+//! voxel whose latest near crossing is strictly before its earliest far
+//! one is visited; one where they are equal is decided here by no rule:
+//! its lane goes back to the caller, who walks it alone. Only packets
+//! whose origin lies outside the occupied box are taken, so every solid
+//! voxel lies strictly ahead on one axis and its entry crossing is
+//! positive: the walk's start keys (at or before 0) never decide it. A
+//! box is entered by a lane whenever any of its cells is (its near
+//! crossings are no later, its far ones no earlier), so no lane skips the
+//! box of its hit; and since a ray's cells grow on every axis in flipped
+//! coordinates, the octant order meets them in the walk's order: the
+//! first solid voxel a lane finds is its hit.
+
+use glam::{BVec4A, Vec3A, Vec4};
+
+use crate::geom::{Face, Ray};
+use crate::scene::{Hit, PACKET};
+use crate::storage::octree::grid::pow2;
+use crate::storage::octree::node::{brick_bit, child_offset, child_rank, Node, NodeKind, GROUP};
+use crate::storage::octree::OctreeScene;
+
+/// One quantity on a packet's sixteen lanes: four `Vec4`s (SSE or NEON
+/// registers where glam has them, plain floats elsewhere).
+type Wide = [Vec4; 4];
+
+/// Lanes whose direction has a reciprocal at least this large on some
+/// axis go back to the caller: their crossing times could overflow.
+const MAX_INV: f32 = 4_294_967_296.0;
+
+/// A packet's shared origin and signs, and its lanes' reciprocals.
+struct Packet {
+    origin: Vec3A,
+    /// The reciprocal direction per axis, per lane.
+    inv: [Wide; 3],
+    /// Bit `a` set: every lane moves down along axis `a`.
+    flip: usize,
+    /// The caller's clear distance on every lane.
+    clear: Vec4,
+}
+
+/// The crossing times of a cube's near and far planes per axis, per lane.
+#[derive(Clone, Copy)]
+struct Slabs<'a> {
+    near: [&'a Wide; 3],
+    far: [&'a Wide; 3],
+}
+
+/// The times at which the lanes cross the plane at `plane` of `axis`.
+#[inline(always)]
+fn crossings(packet: &Packet, axis: usize, plane: f32) -> Wide {
+    let from_origin = Vec4::splat(plane - packet.origin[axis]);
+    packet.inv[axis].map(|inv| from_origin * inv)
+}
+
+/// The lanes (bits) whose ray may enter the cube of `slabs` at or after
+/// the clear distance: those whose latest near crossing is no later than
+/// their earliest far one, ahead of the origin. Never leaves out a lane
+/// that visits one of the cube's cells.
+#[inline(always)]
+fn entering(slabs: &Slabs, clear: Vec4) -> u32 {
+    let mut lanes = 0;
+    for k in 0..4 {
+        let (near, far) = latest_and_earliest(slabs, k);
+        let enters = near.cmple(far) & far.cmpge(clear) & far.cmpgt(Vec4::ZERO);
+        lanes |= enters.bitmask() << (4 * k);
+    }
+    lanes
+}
+
+/// Lanes `4k..4k + 4`' latest near crossing and earliest far crossing.
+#[inline(always)]
+fn latest_and_earliest(slabs: &Slabs, k: usize) -> (Vec4, Vec4) {
+    let [n0, n1, n2] = slabs.near;
+    let [f0, f1, f2] = slabs.far;
+    (n0[k].max(n1[k]).max(n2[k]), f0[k].min(f1[k]).min(f2[k]))
+}
+
+/// Of a voxel's lanes: those that surely visit it (entry strictly before
+/// exit, ahead of the origin) and those the order of equal keys decides.
+#[inline(always)]
+fn visiting(slabs: &Slabs) -> (u32, u32) {
+    let (mut sure, mut tied) = (0, 0);
+    for k in 0..4 {
+        let (near, far) = latest_and_earliest(slabs, k);
+        let ahead: BVec4A = near.cmpgt(Vec4::ZERO);
+        sure |= (near.cmplt(far) & ahead).bitmask() << (4 * k);
+        tied |= (near.cmpeq(far) | (near.cmple(far) & !ahead)).bitmask() << (4 * k);
+    }
+    (sure, tied)
+}
+
+/// Lane `lane` of `wide`.
+#[inline(always)]
+fn lane(wide: &Wide, lane: usize) -> f32 {
+    wide[lane / 4][lane % 4]
+}
+
+/// What a packet's walk hands back: each lane's hit, and the lanes it
+/// could not decide.
+struct Found<'h> {
+    hits: &'h mut [Option<Hit>; PACKET],
+    undecided: u32,
+}
+
+impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
+    /// [`crate::Scene::trace_packet`] for the octree: the lanes from the
+    /// packet's first ray's origin whose direction moves along every axis
+    /// with its signs, when that origin lies outside the occupied box.
+    pub(super) fn packet(
+        &self,
+        rays: &[Ray; PACKET],
+        clear: f32,
+        hits: &mut [Option<Hit>; PACKET],
+    ) -> u16 {
+        let (lo, hi) = (self.occupied.min.as_vec3a(), self.occupied.max.as_vec3a());
+        let (origin, first_dir, _) = rays[0].lanes();
+        let outside = (origin.cmplt(lo) | origin.cmpgt(hi)).any();
+        if self.occupied.is_empty() || !outside || clear.is_nan() || clear == f32::INFINITY {
+            return 0;
+        }
+        let down = first_dir.cmplt(Vec3A::ZERO);
+        let mut inv = [[Vec4::ZERO; 4]; 3];
+        let mut taken = 0u32;
+        for (i, ray) in rays.iter().enumerate() {
+            let (o, dir, inv_dir) = ray.lanes();
+            let moving = dir.cmpne(Vec3A::ZERO) & inv_dir.abs().cmplt(Vec3A::splat(MAX_INV));
+            let same = o.to_array().map(f32::to_bits) == origin.to_array().map(f32::to_bits);
+            if same && moving.all() && dir.cmplt(Vec3A::ZERO).bitmask() == down.bitmask() {
+                taken |= 1 << i;
+            }
+            for (axis, wide) in inv.iter_mut().enumerate() {
+                wide[i / 4][i % 4] = inv_dir[axis];
+            }
+        }
+        if taken == 0 {
+            return 0;
+        }
+        let packet = Packet {
+            origin,
+            inv,
+            flip: down.bitmask() as usize,
+            clear: Vec4::splat(clear),
+        };
+        // The root cube's slabs: near planes are the low ones moving up.
+        let (corner, side) = (self.bounds.min.as_vec3a(), self.root_size as f32);
+        let plane = |axis: usize, far: bool| {
+            let upper = far != (packet.flip >> axis & 1 != 0);
+            crossings(&packet, axis, corner[axis] + if upper { side } else { 0.0 })
+        };
+        let near = [plane(0, false), plane(1, false), plane(2, false)];
+        let far = [plane(0, true), plane(1, true), plane(2, true)];
+        let slabs = Slabs {
+            near: [&near[0], &near[1], &near[2]],
+            far: [&far[0], &far[1], &far[2]],
+        };
+        let lanes = entering(&slabs, packet.clear) & taken;
+        let mut found = Found { hits, undecided: 0 };
+        let root_log = self.root_size.trailing_zeros();
+        let done = self.node(
+            &packet, self.root, corner, root_log, &slabs, lanes, &mut found,
+        );
+        // Lanes that entered nothing, or left without a hit, missed.
+        for i in 0..PACKET {
+            if taken & !done >> i & 1 != 0 {
+                found.hits[i] = None;
+            }
+        }
+        (taken & !found.undecided) as u16
+    }
+
+    /// Walks `lanes` through the node `node`, the cube of side 2^log at
+    /// `corner` whose crossings are `slabs`: returns the lanes that ended
+    /// in it (hit, or undecided).
+    #[allow(clippy::too_many_arguments)]
+    fn node(
+        &self,
+        packet: &Packet,
+        node: Node,
+        corner: Vec3A,
+        log: u32,
+        slabs: &Slabs,
+        lanes: u32,
+        found: &mut Found,
+    ) -> u32 {
+        match node.kind() {
+            NodeKind::Branch { children, first } => {
+                let nodes = self.nodes.as_ref();
+                self.children(
+                    packet,
+                    corner,
+                    log,
+                    slabs,
+                    lanes,
+                    |octant, at, slabs, lanes| {
+                        if children & (1 << octant) == 0 {
+                            return 0;
+                        }
+                        let child = nodes[(first + child_rank(children, octant as u32)) as usize];
+                        self.node(packet, child, at, log - 1, slabs, lanes, found)
+                    },
+                )
+            }
+            NodeKind::Solid(material) => {
+                self.solid(packet, corner, log, slabs, lanes, material, found)
+            }
+            NodeKind::Brick {
+                occupancy,
+                materials,
+            } => self.children(
+                packet,
+                corner,
+                2,
+                slabs,
+                lanes,
+                |group, at, slabs, lanes| {
+                    let group_bit = brick_bit(child_offset(group) * 2);
+                    if occupancy & GROUP << group_bit == 0 {
+                        return 0;
+                    }
+                    self.children(packet, at, 1, slabs, lanes, |voxel, at, slabs, lanes| {
+                        let bit = group_bit + brick_bit(child_offset(voxel));
+                        if occupancy >> bit & 1 == 0 {
+                            return 0;
+                        }
+                        let material = self.brick_material(occupancy, materials, bit);
+                        self.voxel(packet, at, slabs, lanes, material, found)
+                    })
+                },
+            ),
+        }
+    }
+
+    /// Walks `lanes` through a solid cube (side 2^log at `corner`): halved
+    /// down to the voxel each lane enters first.
+    #[allow(clippy::too_many_arguments)]
+    fn solid(
+        &self,
+        packet: &Packet,
+        corner: Vec3A,
+        log: u32,
+        slabs: &Slabs,
+        lanes: u32,
+        material: u8,
+        found: &mut Found,
+    ) -> u32 {
+        if log == 0 {
+            return self.voxel(packet, corner, slabs, lanes, material, found);
+        }
+        self.children(packet, corner, log, slabs, lanes, |_, at, slabs, lanes| {
+            self.solid(packet, at, log - 1, slabs, lanes, material, found)
+        })
+    }
+
+    /// Shows `enter(octant, corner, slabs, lanes)` each child of the cube
+    /// of side 2^log at `corner` that some of `lanes` enter, in the order
+    /// the packet's rays meet them, until every lane has ended; `enter`
+    /// returns the lanes that ended in the child. Returns the lanes that
+    /// ended.
+    #[inline(always)]
+    fn children(
+        &self,
+        packet: &Packet,
+        corner: Vec3A,
+        log: u32,
+        slabs: &Slabs,
+        mut lanes: u32,
+        mut enter: impl FnMut(usize, Vec3A, &Slabs, u32) -> u32,
+    ) -> u32 {
+        let half = pow2(log - 1);
+        let mid = [0, 1, 2].map(|axis| crossings(packet, axis, corner[axis] + half));
+        let mut ended = 0;
+        for i in 0..8 {
+            // The near child on every axis first: `i`'s bits say which
+            // side of each midplane, counted along the packet's rays.
+            let octant = i ^ packet.flip;
+            let offset = child_offset(octant).as_vec3a() * half;
+            let mut child = Slabs {
+                near: slabs.near,
+                far: slabs.far,
+            };
+            for (axis, mid) in mid.iter().enumerate() {
+                if i >> axis & 1 == 0 {
+                    child.far[axis] = mid;
+                } else {
+                    child.near[axis] = mid;
+                }
+            }
+            let entering = entering(&child, packet.clear) & lanes;
+            if entering == 0 {
+                continue;
+            }
+            let done = enter(octant, corner + offset, &child, entering);
+            ended |= done;
+            lanes &= !done;
+            if lanes == 0 {
+                break;
+            }
+        }
+        ended
+    }
+
+    /// Ends the lanes of `lanes` that visit the solid voxel at `corner`
+    /// (crossings `slabs`) with a hit on it, and those that might with no
+    /// answer; returns them.
+    fn voxel(
+        &self,
+        packet: &Packet,
+        corner: Vec3A,
+        slabs: &Slabs,
+        lanes: u32,
+        material: u8,
+        found: &mut Found,
+    ) -> u32 {
+        let (sure, tied) = visiting(slabs);
+        let (hit, undecided) = (sure & lanes, tied & lanes);
+        found.undecided |= undecided;
+        let mut left = hit;
+        while left != 0 {
+            let i = left.trailing_zeros() as usize;
+            left &= left - 1;
+            // The entry key: the latest near crossing, ties to the highest
+            // axis (the walk's key, whose start keys all come before it).
+            let t = slabs.near.map(|wide| lane(wide, i));
+            let latest = t[0].max(t[1]).max(t[2]);
+            let axis = if t[2] == latest {
+                2
+            } else if t[1] == latest {
+                1
+            } else {
+                0
+            };
+            let face = Face::entered(axis, packet.flip >> axis & 1 == 0);
+            let pos = corner.as_ivec3();
+            found.hits[i] = Hit::from_palette(&self.palette, pos, Some(face), t[axis], material);
+        }
+        hit | undecided
+    }
+}
