@@ -176,6 +176,18 @@ impl Ray {
         self.inv_dir.into()
     }
 
+    /// The ray of the parts [`Ray::from_lanes`] computes, computed by a
+    /// caller with its operations (a camera's block of rays, several at
+    /// once): `dir` unit, `inv_dir` its reciprocal, both finite.
+    #[inline]
+    pub(crate) fn from_parts(origin: Vec3A, dir: Vec3A, inv_dir: Vec3A) -> Self {
+        Self {
+            origin,
+            dir,
+            inv_dir,
+        }
+    }
+
     /// [`Ray::origin`], [`Ray::dir`] and [`Ray::inv_dir`] as the lanes
     /// they are kept in.
     #[inline]

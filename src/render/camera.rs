@@ -10,6 +10,9 @@ use crate::geom::Ray;
 use crate::math::tan32;
 use crate::render::view::{basis, unit, Projection};
 
+mod block;
+pub(crate) use block::BLOCK;
+
 /// The seven camera parameters of the seed paper.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraSettings {

@@ -8,7 +8,7 @@
 //! byte-identical.
 
 use crate::geom::Ray;
-use crate::render::camera::Camera;
+use crate::render::camera::{Camera, BLOCK};
 #[cfg(feature = "path")]
 use crate::render::rounds::PixelSamples;
 use crate::render::shader::Kernel;
@@ -69,10 +69,6 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
     stats
 }
 
-/// Side of a packet's block of pixels: [`PACKET`] rays.
-const BLOCK: u32 = 4;
-const _: () = assert!((BLOCK * BLOCK) as usize == PACKET);
-
 /// The pixels of `tile` (of `rect`) for a [`Kernel::one_ray`] kernel: its
 /// whole 4x4 blocks traced as packets, the lanes a packet leaves and the
 /// pixels of partial blocks one ray at a time, each shaded by the kernel.
@@ -114,8 +110,7 @@ fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
                 }
                 continue;
             }
-            let rays: [Ray; PACKET] =
-                core::array::from_fn(|i| ray_at((bx + i as u32 % BLOCK, by + i as u32 / BLOCK)));
+            let rays = camera.block_rays(rect.x.wrapping_add(bx), rect.y.wrapping_add(by));
             let mut hits = [None; PACKET];
             let answered = scene.trace_packet(&rays, t_start, &mut hits);
             for (i, ray) in rays.iter().enumerate() {

@@ -107,6 +107,12 @@ fn visiting(slabs: &Slabs) -> (u32, u32) {
     (sure, tied)
 }
 
+/// The octants (a bit each) for which `is` holds.
+#[inline(always)]
+fn present(is: impl Fn(usize) -> bool) -> u8 {
+    (0..8).fold(0, |bits, octant| bits | u8::from(is(octant)) << octant)
+}
+
 /// Lane `lane` of `wide`.
 #[inline(always)]
 fn lane(wide: &Wide, lane: usize) -> f32 {
@@ -203,16 +209,14 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         match node.kind() {
             NodeKind::Branch { children, first } => {
                 let nodes = self.nodes.as_ref();
+                let cube = (corner, log);
                 self.children(
                     packet,
-                    corner,
-                    log,
+                    cube,
+                    children,
                     slabs,
                     lanes,
                     |octant, at, slabs, lanes| {
-                        if children & (1 << octant) == 0 {
-                            return 0;
-                        }
                         let child = nodes[(first + child_rank(children, octant as u32)) as usize];
                         self.node(packet, child, at, log - 1, slabs, lanes, found)
                     },
@@ -224,27 +228,33 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             NodeKind::Brick {
                 occupancy,
                 materials,
-            } => self.children(
-                packet,
-                corner,
-                2,
-                slabs,
-                lanes,
-                |group, at, slabs, lanes| {
-                    let group_bit = brick_bit(child_offset(group) * 2);
-                    if occupancy & GROUP << group_bit == 0 {
-                        return 0;
-                    }
-                    self.children(packet, at, 1, slabs, lanes, |voxel, at, slabs, lanes| {
-                        let bit = group_bit + brick_bit(child_offset(voxel));
-                        if occupancy >> bit & 1 == 0 {
-                            return 0;
-                        }
-                        let material = self.brick_material(occupancy, materials, bit);
-                        self.voxel(packet, at, slabs, lanes, material, found)
-                    })
-                },
-            ),
+            } => {
+                let group_bit = |group: usize| brick_bit(child_offset(group) * 2);
+                let groups = present(|group| occupancy & GROUP << group_bit(group) != 0);
+                self.children(
+                    packet,
+                    (corner, 2),
+                    groups,
+                    slabs,
+                    lanes,
+                    |group, at, slabs, lanes| {
+                        let bit = |voxel: usize| group_bit(group) + brick_bit(child_offset(voxel));
+                        let voxels = present(|voxel| occupancy >> bit(voxel) & 1 != 0);
+                        self.children(
+                            packet,
+                            (at, 1),
+                            voxels,
+                            slabs,
+                            lanes,
+                            |voxel, at, slabs, lanes| {
+                                let material =
+                                    self.brick_material(occupancy, materials, bit(voxel));
+                                self.voxel(packet, at, slabs, lanes, material, found)
+                            },
+                        )
+                    },
+                )
+            }
         }
     }
 
@@ -264,22 +274,27 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         if log == 0 {
             return self.voxel(packet, corner, slabs, lanes, material, found);
         }
-        self.children(packet, corner, log, slabs, lanes, |_, at, slabs, lanes| {
-            self.solid(packet, at, log - 1, slabs, lanes, material, found)
-        })
+        self.children(
+            packet,
+            (corner, log),
+            0xff,
+            slabs,
+            lanes,
+            |_, at, slabs, lanes| self.solid(packet, at, log - 1, slabs, lanes, material, found),
+        )
     }
 
     /// Shows `enter(octant, corner, slabs, lanes)` each child of the cube
-    /// of side 2^log at `corner` that some of `lanes` enter, in the order
-    /// the packet's rays meet them, until every lane has ended; `enter`
-    /// returns the lanes that ended in the child. Returns the lanes that
-    /// ended.
+    /// of side 2^log at `corner` (`cube`) that is in `present` (a bit per
+    /// octant) and that some of `lanes` enter, in the order the packet's
+    /// rays meet them, until every lane has ended; `enter` returns the
+    /// lanes that ended in the child. Returns the lanes that ended.
     #[inline(always)]
     fn children(
         &self,
         packet: &Packet,
-        corner: Vec3A,
-        log: u32,
+        (corner, log): (Vec3A, u32),
+        present: u8,
         slabs: &Slabs,
         mut lanes: u32,
         mut enter: impl FnMut(usize, Vec3A, &Slabs, u32) -> u32,
@@ -291,6 +306,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             // The near child on every axis first: `i`'s bits say which
             // side of each midplane, counted along the packet's rays.
             let octant = i ^ packet.flip;
+            if present >> octant & 1 == 0 {
+                continue;
+            }
             let offset = child_offset(octant).as_vec3a() * half;
             let mut child = Slabs {
                 near: slabs.near,

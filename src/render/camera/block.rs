@@ -1,0 +1,116 @@
+//! A camera's rays for a 4x4 block of pixels, sixteen at a time: the
+//! packets the tiles trace ([`crate::Scene::trace_packet`]).
+
+use glam::{Vec3A, Vec4};
+
+use crate::geom::Ray;
+use crate::render::camera::Camera;
+use crate::scene::PACKET;
+
+/// Side of a block of pixels: [`PACKET`] rays.
+pub(crate) const BLOCK: u32 = 4;
+const _: () = assert!((BLOCK * BLOCK) as usize == PACKET);
+
+impl Camera {
+    /// The rays through the centers of the 4x4 pixels from `(i, j)`: lane
+    /// `k` is pixel `(i + k % 4, j + k / 4)`'s, bit for bit the ray
+    /// [`Camera::get_ray`] gives it. A row of four is computed at once,
+    /// lane by lane with [`Ray::new`]'s operations in its order, so the
+    /// divisions and square roots that bound a lone ray's time overlap.
+    #[must_use]
+    pub(crate) fn block_rays(&self, i: u32, j: u32) -> [Ray; PACKET] {
+        let mut rays = [self.forward; PACKET];
+        for row in 0..BLOCK {
+            let y = j.wrapping_add(row);
+            let columns = [0, 1, 2, 3].map(|dx| i.wrapping_add(dx));
+            let lanes = &mut rays[(row * BLOCK) as usize..][..BLOCK as usize];
+            if self.orthographic {
+                for (ray, x) in lanes.iter_mut().zip(columns) {
+                    *ray = self.get_ray(x, y);
+                }
+                continue;
+            }
+            let x = Vec4::from_array(columns.map(|x| x as f32));
+            let y = Vec4::splat(y as f32);
+            // Per axis: the image-plane point minus the camera's position.
+            let to_pixel = [0, 1, 2].map(|axis| {
+                let corner = Vec4::splat(self.pixel00[axis]);
+                let (du, dv) = (self.delta_u[axis], self.delta_v[axis]);
+                corner + Vec4::splat(du) * x + Vec4::splat(dv) * y - Vec4::splat(self.center[axis])
+            });
+            // `Ray::new`: scaled by the largest component, then by the
+            // length (squares summed x, y, z), and the reciprocal.
+            let [dx, dy, dz] = to_pixel;
+            let largest = dx.abs().max(dy.abs()).max(dz.abs());
+            let scaled = to_pixel.map(|d| d / largest);
+            let [sx, sy, sz] = scaled;
+            let length = (sx * sx + sy * sy + sz * sz).sqrt();
+            let dir = scaled.map(|s| s / length);
+            let inv = dir.map(|d| Vec4::ONE / d);
+            let usable = largest.cmpgt(Vec4::ZERO) & dx.is_finite_mask() & dy.is_finite_mask();
+            let usable = (usable & dz.is_finite_mask()).bitmask();
+            for (lane, ray) in lanes.iter_mut().enumerate() {
+                *ray = if usable >> lane & 1 != 0 {
+                    let of = |v: [Vec4; 3]| Vec3A::new(v[0][lane], v[1][lane], v[2][lane]);
+                    Ray::from_parts(self.center, of(dir), of(inv))
+                } else {
+                    // The lone ray's own fallback.
+                    self.get_ray(columns[lane], j.wrapping_add(row))
+                };
+            }
+        }
+        rays
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+    use proptest::prelude::*;
+
+    use crate::render::camera::{Camera, CameraSettings};
+    use crate::render::view::Projection;
+
+    proptest! {
+        /// Every lane of a block is the lone ray of its pixel, bit for bit,
+        /// for cameras anywhere, of any field of view and projection, at
+        /// any block of the frame (the last pixels of the largest frame
+        /// too).
+        #[test]
+        fn a_blocks_rays_are_the_lone_rays(
+            from in prop::array::uniform3(-3000.0f32..3000.0),
+            at in prop::array::uniform3(-50.0f32..50.0),
+            fov in 1.0f32..170.0,
+            size in (1u32..5000, 1u32..5000),
+            block in (any::<u32>(), any::<u32>()),
+            ortho in prop::option::of(0.5f32..500.0),
+        ) {
+            let settings = CameraSettings {
+                width: size.0,
+                height: size.1,
+                vertical_fov: fov,
+                lookfrom: Vec3::from(from),
+                lookat: Vec3::from(at),
+                projection: ortho.map_or(Projection::Perspective, |height| {
+                    Projection::Orthographic { height }
+                }),
+                ..CameraSettings::default()
+            };
+            let Ok(camera) = Camera::new(settings) else {
+                return Ok(());
+            };
+            let (i, j) = (block.0 % (size.0 + 8), block.1 % (size.1 + 8));
+            let (i, j) = if block.0 % 7 == 0 { (u32::MAX - 2, u32::MAX - 1) } else { (i, j) };
+            let rays = camera.block_rays(i, j);
+            for (k, ray) in rays.iter().enumerate() {
+                let (x, y) = (i.wrapping_add(k as u32 % 4), j.wrapping_add(k as u32 / 4));
+                let lone = camera.get_ray(x, y);
+                let bits = |r: &crate::geom::Ray| {
+                    let (o, d, inv) = r.lanes();
+                    [o, d, inv].map(|v| v.to_array().map(f32::to_bits))
+                };
+                prop_assert_eq!(bits(ray), bits(&lone), "pixel ({}, {})", x, y);
+            }
+        }
+    }
+}
