@@ -29,7 +29,7 @@
 //! coordinates, the octant order meets them in the walk's order: the
 //! first solid voxel a lane finds is its hit.
 
-use glam::{BVec4A, Vec3A, Vec4};
+use glam::{BVec3A, BVec4A, Vec3A, Vec4};
 
 use crate::geom::{Face, Ray};
 use crate::scene::{Hit, PACKET};
@@ -50,10 +50,64 @@ struct Packet {
     origin: Vec3A,
     /// The reciprocal direction per axis, per lane.
     inv: [Wide; 3],
-    /// Bit `a` set: every lane moves down along axis `a`.
+    /// The least and the greatest reciprocal per axis over the lanes.
+    inv_lo: Vec3A,
+    inv_hi: Vec3A,
+    /// The axes every lane moves down along.
+    down: BVec3A,
+    /// The same as bits (`x | y << 1 | z << 2`).
     flip: usize,
-    /// The caller's clear distance on every lane.
-    clear: Vec4,
+    /// The least far crossing of a cube a lane may enter: the caller's
+    /// clear distance, and ahead of the origin (the least positive float
+    /// when the clear distance is 0).
+    floor: f32,
+}
+
+impl Packet {
+    /// The planes of the cube of side `side` at `corner` that the lanes
+    /// enter it by (near) and leave it by (far), per axis.
+    #[inline(always)]
+    fn slab_planes(&self, corner: Vec3A, side: f32) -> (Vec3A, Vec3A) {
+        let (low, high) = (corner, corner + side);
+        (
+            Vec3A::select(self.down, high, low),
+            Vec3A::select(self.down, low, high),
+        )
+    }
+
+    /// The earliest and the latest time at which any lane crosses each
+    /// axis' plane of `planes`: the crossings `(plane - origin) * inv`
+    /// of the least and the greatest reciprocal, as rounding keeps the
+    /// order of products by one factor.
+    #[inline(always)]
+    fn spans(&self, planes: Vec3A) -> (Vec3A, Vec3A) {
+        let from_origin = planes - self.origin;
+        let ahead = from_origin.cmpge(Vec3A::ZERO);
+        let (by_lo, by_hi) = (from_origin * self.inv_lo, from_origin * self.inv_hi);
+        (
+            Vec3A::select(ahead, by_lo, by_hi),
+            Vec3A::select(ahead, by_hi, by_lo),
+        )
+    }
+}
+
+/// What the packet's lanes may do in a cube: per axis, the earliest near
+/// crossing and the latest far crossing of any lane.
+#[derive(Clone, Copy)]
+struct Hull {
+    near: Vec3A,
+    far: Vec3A,
+}
+
+impl Hull {
+    /// Whether some lane may enter the cube at or after `floor`: never
+    /// false when a lane's own crossings enter it (each lane's latest near
+    /// crossing is no earlier, its earliest far one no later).
+    #[inline(always)]
+    fn entered(self, floor: f32) -> bool {
+        let far = self.far.min_element();
+        self.near.max_element() <= far && far >= floor
+    }
 }
 
 /// The crossing times of a cube's near and far planes per axis, per lane.
@@ -72,14 +126,15 @@ fn crossings(packet: &Packet, axis: usize, plane: f32) -> Wide {
 
 /// The lanes (bits) whose ray may enter the cube of `slabs` at or after
 /// the clear distance: those whose latest near crossing is no later than
-/// their earliest far one, ahead of the origin. Never leaves out a lane
-/// that visits one of the cube's cells.
+/// their earliest far one, which is at least `floor` ([`Packet::floor`]).
+/// Never leaves out a lane that visits one of the cube's cells.
 #[inline(always)]
-fn entering(slabs: &Slabs, clear: Vec4) -> u32 {
+fn entering(slabs: &Slabs, floor: f32) -> u32 {
+    let floor = Vec4::splat(floor);
     let mut lanes = 0;
     for k in 0..4 {
         let (near, far) = latest_and_earliest(slabs, k);
-        let enters = near.cmple(far) & far.cmpge(clear) & far.cmpgt(Vec4::ZERO);
+        let enters = near.cmple(far) & far.cmpge(floor);
         lanes |= enters.bitmask() << (4 * k);
     }
     lanes
@@ -144,6 +199,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         }
         let down = first_dir.cmplt(Vec3A::ZERO);
         let mut inv = [[Vec4::ZERO; 4]; 3];
+        let (mut inv_lo, mut inv_hi) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
         let mut taken = 0u32;
         for (i, ray) in rays.iter().enumerate() {
             let (o, dir, inv_dir) = ray.lanes();
@@ -151,6 +207,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             let same = o.to_array().map(f32::to_bits) == origin.to_array().map(f32::to_bits);
             if same && moving.all() && dir.cmplt(Vec3A::ZERO).bitmask() == down.bitmask() {
                 taken |= 1 << i;
+                inv_lo = inv_lo.min(inv_dir);
+                inv_hi = inv_hi.max(inv_dir);
             }
             for (axis, wide) in inv.iter_mut().enumerate() {
                 wide[i / 4][i % 4] = inv_dir[axis];
@@ -162,27 +220,24 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let packet = Packet {
             origin,
             inv,
+            inv_lo,
+            inv_hi,
+            down,
             flip: down.bitmask() as usize,
-            clear: Vec4::splat(clear),
+            floor: clear.max(f32::from_bits(1)),
         };
-        // The root cube's slabs: near planes are the low ones moving up.
-        let (corner, side) = (self.bounds.min.as_vec3a(), self.root_size as f32);
-        let plane = |axis: usize, far: bool| {
-            let upper = far != (packet.flip >> axis & 1 != 0);
-            crossings(&packet, axis, corner[axis] + if upper { side } else { 0.0 })
-        };
-        let near = [plane(0, false), plane(1, false), plane(2, false)];
-        let far = [plane(0, true), plane(1, true), plane(2, true)];
-        let slabs = Slabs {
-            near: [&near[0], &near[1], &near[2]],
-            far: [&far[0], &far[1], &far[2]],
-        };
-        let lanes = entering(&slabs, packet.clear) & taken;
         let mut found = Found { hits, undecided: 0 };
-        let root_log = self.root_size.trailing_zeros();
-        let done = self.node(
-            &packet, self.root, corner, root_log, &slabs, lanes, &mut found,
-        );
+        let (corner, log) = (self.bounds.min.as_vec3a(), self.root_size.trailing_zeros());
+        let (near, far) = packet.slab_planes(corner, self.root_size as f32);
+        let hull = Hull {
+            near: packet.spans(near).0,
+            far: packet.spans(far).1,
+        };
+        let done = if hull.entered(packet.floor) {
+            self.node(&packet, self.root, corner, log, hull, taken, &mut found)
+        } else {
+            0
+        };
         // Lanes that entered nothing, or left without a hit, missed.
         for i in 0..PACKET {
             if taken & !done >> i & 1 != 0 {
@@ -193,8 +248,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     }
 
     /// Walks `lanes` through the node `node`, the cube of side 2^log at
-    /// `corner` whose crossings are `slabs`: returns the lanes that ended
-    /// in it (hit, or undecided).
+    /// `corner`, which the packet may enter (`hull`): returns the lanes
+    /// that ended in it (hit, or undecided). Branches are taken by the
+    /// packet's hull, leaves by each lane's crossings.
     #[allow(clippy::too_many_arguments)]
     fn node(
         &self,
@@ -202,26 +258,75 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         node: Node,
         corner: Vec3A,
         log: u32,
-        slabs: &Slabs,
+        hull: Hull,
+        mut lanes: u32,
+        found: &mut Found,
+    ) -> u32 {
+        let NodeKind::Branch { children, first } = node.kind() else {
+            return self.leaf(packet, node, corner, log, lanes, found);
+        };
+        let nodes = self.nodes.as_ref();
+        let half = pow2(log - 1);
+        let (mid_early, mid_late) = packet.spans(corner + half);
+        let mut ended = 0;
+        for i in 0..8 {
+            // The near child on every axis first (see `children`).
+            let octant = i ^ packet.flip;
+            if children >> octant & 1 == 0 {
+                continue;
+            }
+            let beyond = BVec3A::new(i & 1 != 0, i & 2 != 0, i & 4 != 0);
+            let child = Hull {
+                near: Vec3A::select(beyond, mid_early, hull.near),
+                far: Vec3A::select(beyond, hull.far, mid_late),
+            };
+            if !child.entered(packet.floor) {
+                continue;
+            }
+            let at = corner + child_offset(octant).as_vec3a() * half;
+            let index = first + child_rank(children, octant as u32);
+            let done = self.node(
+                packet,
+                nodes[index as usize],
+                at,
+                log - 1,
+                child,
+                lanes,
+                found,
+            );
+            ended |= done;
+            lanes &= !done;
+            if lanes == 0 {
+                break;
+            }
+        }
+        ended
+    }
+
+    /// Walks `lanes` through the leaf `node` (a brick or a solid cube, of
+    /// side 2^log at `corner`) by each lane's crossings.
+    fn leaf(
+        &self,
+        packet: &Packet,
+        node: Node,
+        corner: Vec3A,
+        log: u32,
         lanes: u32,
         found: &mut Found,
     ) -> u32 {
+        let (near, far) = packet.slab_planes(corner, pow2(log));
+        let near = [0, 1, 2].map(|axis| crossings(packet, axis, near[axis]));
+        let far = [0, 1, 2].map(|axis| crossings(packet, axis, far[axis]));
+        let slabs = &Slabs {
+            near: [&near[0], &near[1], &near[2]],
+            far: [&far[0], &far[1], &far[2]],
+        };
+        let lanes = entering(slabs, packet.floor) & lanes;
+        if lanes == 0 {
+            return 0;
+        }
         match node.kind() {
-            NodeKind::Branch { children, first } => {
-                let nodes = self.nodes.as_ref();
-                let cube = (corner, log);
-                self.children(
-                    packet,
-                    cube,
-                    children,
-                    slabs,
-                    lanes,
-                    |octant, at, slabs, lanes| {
-                        let child = nodes[(first + child_rank(children, octant as u32)) as usize];
-                        self.node(packet, child, at, log - 1, slabs, lanes, found)
-                    },
-                )
-            }
+            NodeKind::Branch { .. } => 0,
             NodeKind::Solid(material) => {
                 self.solid(packet, corner, log, slabs, lanes, material, found)
             }
@@ -231,9 +336,10 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             } => {
                 let group_bit = |group: usize| brick_bit(child_offset(group) * 2);
                 let groups = present(|group| occupancy & GROUP << group_bit(group) != 0);
+                let brick = (corner, 2);
                 self.children(
                     packet,
-                    (corner, 2),
+                    brick,
                     groups,
                     slabs,
                     lanes,
@@ -321,7 +427,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                     child.near[axis] = mid;
                 }
             }
-            let entering = entering(&child, packet.clear) & lanes;
+            let entering = entering(&child, packet.floor) & lanes;
             if entering == 0 {
                 continue;
             }
