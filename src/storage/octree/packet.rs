@@ -99,7 +99,63 @@ struct Hull {
     far: Vec3A,
 }
 
+/// Bit `i` of `octants` (a bit per octant) at bit `i ^ flip`: the octants
+/// in the order of a walk whose axes in `flip` run down.
+#[inline(always)]
+fn in_flipped_order(octants: u8, flip: usize) -> u8 {
+    let mut bits = octants;
+    if flip & 1 != 0 {
+        bits = (bits & 0x55) << 1 | (bits & 0xaa) >> 1;
+    }
+    if flip & 2 != 0 {
+        bits = (bits & 0x33) << 2 | (bits & 0xcc) >> 2;
+    }
+    if flip & 4 != 0 {
+        bits = bits.rotate_left(4);
+    }
+    bits
+}
+
+/// Lanes `i` of four where bit 0 of `i` is set, and bit 1: the children
+/// beyond the midplane of x, and of y, among four of one z half.
+const BEYOND_X: BVec4A = BVec4A::new(false, true, false, true);
+const BEYOND_Y: BVec4A = BVec4A::new(false, false, true, true);
+
 impl Hull {
+    /// The hull of child `i` (its octant with the down-moving axes
+    /// flipped: bit `a` set, beyond the midplane of axis `a`), whose
+    /// midplanes the lanes cross from `mid_early` to `mid_late`.
+    #[inline(always)]
+    fn child(self, i: usize, mid_early: Vec3A, mid_late: Vec3A) -> Hull {
+        let beyond = BVec3A::new(i & 1 != 0, i & 2 != 0, i & 4 != 0);
+        Hull {
+            near: Vec3A::select(beyond, mid_early, self.near),
+            far: Vec3A::select(beyond, self.far, mid_late),
+        }
+    }
+
+    /// [`Hull::entered`] for the eight children at once: bit `i` for child
+    /// `i` ([`Hull::child`]).
+    #[inline(always)]
+    fn children_entered(self, mid_early: Vec3A, mid_late: Vec3A, floor: f32) -> u8 {
+        let pick = |beyond, (near, mid): (f32, f32)| {
+            Vec4::select(beyond, Vec4::splat(mid), Vec4::splat(near))
+        };
+        let near_xy = pick(BEYOND_X, (self.near.x, mid_early.x))
+            .max(pick(BEYOND_Y, (self.near.y, mid_early.y)));
+        let far_xy =
+            pick(BEYOND_X, (mid_late.x, self.far.x)).min(pick(BEYOND_Y, (mid_late.y, self.far.y)));
+        let floor = Vec4::splat(floor);
+        let half = |near_z: f32, far_z: f32| {
+            let (near, far) = (
+                near_xy.max(Vec4::splat(near_z)),
+                far_xy.min(Vec4::splat(far_z)),
+            );
+            (near.cmple(far) & far.cmpge(floor)).bitmask() as u8
+        };
+        half(self.near.z, mid_late.z) | half(mid_early.z, self.far.z) << 4
+    }
+
     /// Whether some lane may enter the cube at or after `floor`: never
     /// false when a lane's own crossings enter it (each lane's latest near
     /// crossing is no earlier, its earliest far one no later).
@@ -268,32 +324,20 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let nodes = self.nodes.as_ref();
         let half = pow2(log - 1);
         let (mid_early, mid_late) = packet.spans(corner + half);
+        // The children in the order the rays meet them (`i`: the octant
+        // with the down-moving axes flipped), present and entered.
+        let mut order = hull.children_entered(mid_early, mid_late, packet.floor)
+            & in_flipped_order(children, packet.flip);
         let mut ended = 0;
-        for i in 0..8 {
-            // The near child on every axis first (see `children`).
+        while order != 0 {
+            let i = order.trailing_zeros() as usize;
+            order &= order - 1;
             let octant = i ^ packet.flip;
-            if children >> octant & 1 == 0 {
-                continue;
-            }
-            let beyond = BVec3A::new(i & 1 != 0, i & 2 != 0, i & 4 != 0);
-            let child = Hull {
-                near: Vec3A::select(beyond, mid_early, hull.near),
-                far: Vec3A::select(beyond, hull.far, mid_late),
-            };
-            if !child.entered(packet.floor) {
-                continue;
-            }
+            let child = hull.child(i, mid_early, mid_late);
             let at = corner + child_offset(octant).as_vec3a() * half;
             let index = first + child_rank(children, octant as u32);
-            let done = self.node(
-                packet,
-                nodes[index as usize],
-                at,
-                log - 1,
-                child,
-                lanes,
-                found,
-            );
+            let node = nodes[index as usize];
+            let done = self.node(packet, node, at, log - 1, child, lanes, found);
             ended |= done;
             lanes &= !done;
             if lanes == 0 {
