@@ -319,7 +319,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         found: &mut Found,
     ) -> u32 {
         let NodeKind::Branch { children, first } = node.kind() else {
-            return self.leaf(packet, node, corner, log, lanes, found);
+            return self.leaf(packet, node, corner, log, hull, lanes, found);
         };
         let nodes = self.nodes.as_ref();
         let half = pow2(log - 1);
@@ -348,13 +348,16 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     }
 
     /// Walks `lanes` through the leaf `node` (a brick or a solid cube, of
-    /// side 2^log at `corner`) by each lane's crossings.
+    /// side 2^log at `corner`, the packet's hull `hull`) by each lane's
+    /// crossings, children the hull misses skipped first.
+    #[allow(clippy::too_many_arguments)]
     fn leaf(
         &self,
         packet: &Packet,
         node: Node,
         corner: Vec3A,
         log: u32,
+        hull: Hull,
         lanes: u32,
         found: &mut Found,
     ) -> u32 {
@@ -369,34 +372,32 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         if lanes == 0 {
             return 0;
         }
+        let cube = (corner, log, hull);
         match node.kind() {
             NodeKind::Branch { .. } => 0,
-            NodeKind::Solid(material) => {
-                self.solid(packet, corner, log, slabs, lanes, material, found)
-            }
+            NodeKind::Solid(material) => self.solid(packet, cube, slabs, lanes, material, found),
             NodeKind::Brick {
                 occupancy,
                 materials,
             } => {
                 let group_bit = |group: usize| brick_bit(child_offset(group) * 2);
                 let groups = present(|group| occupancy & GROUP << group_bit(group) != 0);
-                let brick = (corner, 2);
                 self.children(
                     packet,
-                    brick,
+                    cube,
                     groups,
                     slabs,
                     lanes,
-                    |group, at, slabs, lanes| {
+                    |group, group_cube, slabs, lanes| {
                         let bit = |voxel: usize| group_bit(group) + brick_bit(child_offset(voxel));
                         let voxels = present(|voxel| occupancy >> bit(voxel) & 1 != 0);
                         self.children(
                             packet,
-                            (at, 1),
+                            group_cube,
                             voxels,
                             slabs,
                             lanes,
-                            |voxel, at, slabs, lanes| {
+                            |voxel, (at, ..), slabs, lanes| {
                                 let material =
                                     self.brick_material(occupancy, materials, bit(voxel));
                                 self.voxel(packet, at, slabs, lanes, material, found)
@@ -408,58 +409,55 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         }
     }
 
-    /// Walks `lanes` through a solid cube (side 2^log at `corner`): halved
-    /// down to the voxel each lane enters first.
-    #[allow(clippy::too_many_arguments)]
+    /// Walks `lanes` through a solid cube (`cube`: its corner, log2 of its
+    /// side and the packet's hull; `slabs` its crossings), halved down to
+    /// the voxel each lane enters first.
     fn solid(
         &self,
         packet: &Packet,
-        corner: Vec3A,
-        log: u32,
+        cube: (Vec3A, u32, Hull),
         slabs: &Slabs,
         lanes: u32,
         material: u8,
         found: &mut Found,
     ) -> u32 {
-        if log == 0 {
-            return self.voxel(packet, corner, slabs, lanes, material, found);
+        if cube.1 == 0 {
+            return self.voxel(packet, cube.0, slabs, lanes, material, found);
         }
-        self.children(
-            packet,
-            (corner, log),
-            0xff,
-            slabs,
-            lanes,
-            |_, at, slabs, lanes| self.solid(packet, at, log - 1, slabs, lanes, material, found),
-        )
+        self.children(packet, cube, 0xff, slabs, lanes, |_, cube, slabs, lanes| {
+            self.solid(packet, cube, slabs, lanes, material, found)
+        })
     }
 
-    /// Shows `enter(octant, corner, slabs, lanes)` each child of the cube
-    /// of side 2^log at `corner` (`cube`) that is in `present` (a bit per
-    /// octant) and that some of `lanes` enter, in the order the packet's
+    /// Shows `enter(octant, child, slabs, lanes)` each child of `cube` (its
+    /// corner, log2 of its side and the packet's hull; `slabs` its
+    /// crossings) that is in `present` (a bit per octant), that the hull
+    /// may enter and that some of `lanes` enter, in the order the packet's
     /// rays meet them, until every lane has ended; `enter` returns the
     /// lanes that ended in the child. Returns the lanes that ended.
     #[inline(always)]
     fn children(
         &self,
         packet: &Packet,
-        (corner, log): (Vec3A, u32),
+        (corner, log, hull): (Vec3A, u32, Hull),
         present: u8,
         slabs: &Slabs,
         mut lanes: u32,
-        mut enter: impl FnMut(usize, Vec3A, &Slabs, u32) -> u32,
+        mut enter: impl FnMut(usize, (Vec3A, u32, Hull), &Slabs, u32) -> u32,
     ) -> u32 {
         let half = pow2(log - 1);
+        let (mid_early, mid_late) = packet.spans(corner + half);
+        let mut order = hull.children_entered(mid_early, mid_late, packet.floor)
+            & in_flipped_order(present, packet.flip);
+        if order == 0 {
+            return 0;
+        }
         let mid = [0, 1, 2].map(|axis| crossings(packet, axis, corner[axis] + half));
         let mut ended = 0;
-        for i in 0..8 {
-            // The near child on every axis first: `i`'s bits say which
-            // side of each midplane, counted along the packet's rays.
+        while order != 0 {
+            let i = order.trailing_zeros() as usize;
+            order &= order - 1;
             let octant = i ^ packet.flip;
-            if present >> octant & 1 == 0 {
-                continue;
-            }
-            let offset = child_offset(octant).as_vec3a() * half;
             let mut child = Slabs {
                 near: slabs.near,
                 far: slabs.far,
@@ -475,7 +473,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             if entering == 0 {
                 continue;
             }
-            let done = enter(octant, corner + offset, &child, entering);
+            let at = corner + child_offset(octant).as_vec3a() * half;
+            let cube = (at, log - 1, hull.child(i, mid_early, mid_late));
+            let done = enter(octant, cube, &child, entering);
             ended |= done;
             lanes &= !done;
             if lanes == 0 {
