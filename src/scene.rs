@@ -50,7 +50,7 @@ impl Hit {
 }
 
 /// Rays in a packet ([`Scene::trace_packet`]): a 4x4 block of pixels.
-pub const PACKET: usize = 16;
+pub const PACKET: usize = 32;
 
 /// A hit (or miss) together with the number of walk moves it took.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -242,7 +242,7 @@ pub trait Scene {
         rays: &[Ray; PACKET],
         clear: f32,
         hits: &mut [Option<Hit>; PACKET],
-    ) -> u16 {
+    ) -> u32 {
         let _ = (rays, clear, hits);
         0
     }
@@ -321,7 +321,7 @@ macro_rules! forward_tracing {
             rays: &[$crate::geom::Ray; $crate::scene::PACKET],
             clear: f32,
             hits: &mut [Option<$crate::scene::Hit>; $crate::scene::PACKET],
-        ) -> u16 {
+        ) -> u32 {
             $inner(self).trace_packet(rays, clear, hits)
         }
 

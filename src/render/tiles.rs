@@ -11,7 +11,7 @@
 //! byte-identical.
 
 use crate::geom::Ray;
-use crate::render::camera::{Camera, BLOCK};
+use crate::render::camera::{Camera, BLOCK, BLOCK_W};
 #[cfg(feature = "path")]
 use crate::render::rounds::PixelSamples;
 use crate::render::shader::Kernel;
@@ -106,12 +106,12 @@ fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
         *stats += rays;
     };
     for by in (tile.dy0..tile.dy1).step_by(BLOCK as usize) {
-        for bx in (tile.dx0..tile.dx1).step_by(BLOCK as usize) {
-            let whole = by + BLOCK <= tile.dy1 && bx + BLOCK <= tile.dx1;
+        for bx in (tile.dx0..tile.dx1).step_by(BLOCK_W as usize) {
+            let whole = by + BLOCK <= tile.dy1 && bx + BLOCK_W <= tile.dx1;
             let block = Tile {
                 dx0: bx,
                 dy0: by,
-                dx1: (bx + BLOCK).min(tile.dx1),
+                dx1: (bx + BLOCK_W).min(tile.dx1),
                 dy1: (by + BLOCK).min(tile.dy1),
             };
             let ray_at = |(dx, dy): (u32, u32)| {
@@ -129,8 +129,8 @@ fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
             for (i, ray) in rays.iter().enumerate() {
                 let hit = (answered >> i & 1 != 0).then_some(hits[i]);
                 one(
-                    bx + i as u32 % BLOCK,
-                    by + i as u32 / BLOCK,
+                    bx + i as u32 % BLOCK_W,
+                    by + i as u32 / BLOCK_W,
                     ray,
                     hit,
                     memory,

@@ -9,7 +9,8 @@ use crate::scene::PACKET;
 
 /// Side of a block of pixels: [`PACKET`] rays.
 pub(crate) const BLOCK: u32 = 4;
-const _: () = assert!((BLOCK * BLOCK) as usize == PACKET);
+pub(crate) const BLOCK_W: u32 = 8;
+const _: () = assert!((BLOCK * BLOCK_W) as usize == PACKET);
 
 impl Camera {
     /// The rays through the centers of the 4x4 pixels from `(i, j)`: lane
@@ -20,10 +21,11 @@ impl Camera {
     #[must_use]
     pub(crate) fn block_rays(&self, i: u32, j: u32) -> [Ray; PACKET] {
         let mut rays = [self.forward; PACKET];
-        for row in 0..BLOCK {
+        for quad in 0..PACKET as u32 / 4 {
+            let (row, half) = (quad / 2, quad % 2);
             let y = j.wrapping_add(row);
-            let columns = [0, 1, 2, 3].map(|dx| i.wrapping_add(dx));
-            let lanes = &mut rays[(row * BLOCK) as usize..][..BLOCK as usize];
+            let columns = [0, 1, 2, 3].map(|dx| i.wrapping_add(half * 4 + dx));
+            let lanes = &mut rays[(quad * 4) as usize..][..4];
             if self.orthographic {
                 for (ray, x) in lanes.iter_mut().zip(columns) {
                     *ray = self.get_ray(x, y);

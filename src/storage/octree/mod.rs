@@ -170,7 +170,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
         rays: &[Ray; PACKET],
         clear: f32,
         hits: &mut [Option<Hit>; PACKET],
-    ) -> u16 {
+    ) -> u32 {
         self.packet(rays, clear, hits)
     }
 

@@ -39,7 +39,7 @@ use crate::storage::octree::OctreeScene;
 
 /// One quantity on a packet's sixteen lanes: four `Vec4`s (SSE or NEON
 /// registers where glam has them, plain floats elsewhere).
-type Wide = [Vec4; 4];
+type Wide = [Vec4; PACKET / 4];
 
 /// Lanes whose direction has a reciprocal at least this large on some
 /// axis go back to the caller: their crossing times could overflow.
@@ -188,7 +188,7 @@ fn crossings(packet: &Packet, axis: usize, plane: f32) -> Wide {
 fn entering(slabs: &Slabs, floor: f32) -> u32 {
     let floor = Vec4::splat(floor);
     let mut lanes = 0;
-    for k in 0..4 {
+    for k in 0..PACKET / 4 {
         let (near, far) = latest_and_earliest(slabs, k);
         let enters = near.cmple(far) & far.cmpge(floor);
         lanes |= enters.bitmask() << (4 * k);
@@ -209,7 +209,7 @@ fn latest_and_earliest(slabs: &Slabs, k: usize) -> (Vec4, Vec4) {
 #[inline(always)]
 fn visiting(slabs: &Slabs) -> (u32, u32) {
     let (mut sure, mut tied) = (0, 0);
-    for k in 0..4 {
+    for k in 0..PACKET / 4 {
         let (near, far) = latest_and_earliest(slabs, k);
         let ahead: BVec4A = near.cmpgt(Vec4::ZERO);
         sure |= (near.cmplt(far) & ahead).bitmask() << (4 * k);
@@ -246,7 +246,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         rays: &[Ray; PACKET],
         clear: f32,
         hits: &mut [Option<Hit>; PACKET],
-    ) -> u16 {
+    ) -> u32 {
         let (lo, hi) = (self.occupied.min.as_vec3a(), self.occupied.max.as_vec3a());
         let (origin, first_dir, _) = rays[0].lanes();
         let outside = (origin.cmplt(lo) | origin.cmpgt(hi)).any();
@@ -254,7 +254,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             return 0;
         }
         let down = first_dir.cmplt(Vec3A::ZERO);
-        let mut inv = [[Vec4::ZERO; 4]; 3];
+        let mut inv = [[Vec4::ZERO; PACKET / 4]; 3];
         let (mut inv_lo, mut inv_hi) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
         let mut taken = 0u32;
         for (i, ray) in rays.iter().enumerate() {
@@ -300,7 +300,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                 found.hits[i] = None;
             }
         }
-        (taken & !found.undecided) as u16
+        taken & !found.undecided
     }
 
     /// Walks `lanes` through the node `node`, the cube of side 2^log at
