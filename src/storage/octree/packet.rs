@@ -204,24 +204,56 @@ fn latest_and_earliest(slabs: &Slabs, k: usize) -> (Vec4, Vec4) {
     (n0[k].max(n1[k]).max(n2[k]), f0[k].min(f1[k]).min(f2[k]))
 }
 
-/// Of a voxel's lanes: those that surely visit it (entry strictly before
-/// exit, ahead of the origin) and those the order of equal keys decides.
+/// A voxel's lanes: those that surely visit it (entry strictly before
+/// exit, ahead of the origin), those the order of equal keys decides, and
+/// for each lane its entry time and whether it enters through a plane of
+/// z, and else of y (the latest near crossing, ties to the highest axis:
+/// the walk's key).
+struct Visits {
+    sure: u32,
+    tied: u32,
+    entry: Wide,
+    through_z: u32,
+    through_y: u32,
+}
+
+/// [`Visits`] of the voxel whose crossings are `slabs`.
 #[inline(always)]
-fn visiting(slabs: &Slabs) -> (u32, u32) {
-    let (mut sure, mut tied) = (0, 0);
+fn visiting(slabs: &Slabs) -> Visits {
+    let mut visits = Visits {
+        sure: 0,
+        tied: 0,
+        entry: [Vec4::ZERO; PACKET / 4],
+        through_z: 0,
+        through_y: 0,
+    };
     for k in 0..PACKET / 4 {
         let (near, far) = latest_and_earliest(slabs, k);
         let ahead: BVec4A = near.cmpgt(Vec4::ZERO);
-        sure |= (near.cmplt(far) & ahead).bitmask() << (4 * k);
-        tied |= (near.cmpeq(far) | (near.cmple(far) & !ahead)).bitmask() << (4 * k);
+        let shift = 4 * k;
+        visits.sure |= (near.cmplt(far) & ahead).bitmask() << shift;
+        visits.tied |= (near.cmpeq(far) | (near.cmple(far) & !ahead)).bitmask() << shift;
+        visits.entry[k] = near;
+        visits.through_z |= slabs.near[2][k].cmpeq(near).bitmask() << shift;
+        visits.through_y |= slabs.near[1][k].cmpeq(near).bitmask() << shift;
     }
-    (sure, tied)
+    visits
 }
 
 /// The octants (a bit each) for which `is` holds.
 #[inline(always)]
 fn present(is: impl Fn(usize) -> bool) -> u8 {
     (0..8).fold(0, |bits, octant| bits | u8::from(is(octant)) << octant)
+}
+
+/// The set bits of `lanes`, lowest first.
+#[inline(always)]
+fn bits(mut lanes: u32) -> impl Iterator<Item = usize> {
+    core::iter::from_fn(move || {
+        let lane = lanes.trailing_zeros() as usize;
+        lanes &= lanes.wrapping_sub(1);
+        (lane < 32).then_some(lane)
+    })
 }
 
 /// Lane `lane` of `wide`.
@@ -497,27 +529,31 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         material: u8,
         found: &mut Found,
     ) -> u32 {
-        let (sure, tied) = visiting(slabs);
-        let (hit, undecided) = (sure & lanes, tied & lanes);
+        let visits = visiting(slabs);
+        let (hit, undecided) = (visits.sure & lanes, visits.tied & lanes);
         found.undecided |= undecided;
-        let mut left = hit;
-        while left != 0 {
-            let i = left.trailing_zeros() as usize;
-            left &= left - 1;
-            // The entry key: the latest near crossing, ties to the highest
-            // axis (the walk's key, whose start keys all come before it).
-            let t = slabs.near.map(|wide| lane(wide, i));
-            let latest = t[0].max(t[1]).max(t[2]);
-            let axis = if t[2] == latest {
+        // Every lane's hit is on one voxel, through one of three faces.
+        let Some(voxel) = self.palette.voxel(material) else {
+            for i in bits(hit) {
+                found.hits[i] = None;
+            }
+            return hit | undecided;
+        };
+        let pos = corner.as_ivec3();
+        let faces = [0, 1, 2].map(|axis| Face::entered(axis, packet.flip >> axis & 1 == 0));
+        for i in bits(hit) {
+            let axis = if visits.through_z >> i & 1 != 0 {
                 2
-            } else if t[1] == latest {
-                1
             } else {
-                0
+                usize::from(visits.through_y >> i & 1 != 0)
             };
-            let face = Face::entered(axis, packet.flip >> axis & 1 == 0);
-            let pos = corner.as_ivec3();
-            found.hits[i] = Hit::from_palette(&self.palette, pos, Some(face), t[axis], material);
+            found.hits[i] = Some(Hit {
+                pos,
+                face: Some(faces[axis]),
+                t: lane(&visits.entry, i),
+                material,
+                voxel,
+            });
         }
         hit | undecided
     }
