@@ -49,7 +49,7 @@ impl Hit {
     }
 }
 
-/// Rays in a packet ([`Scene::trace_packet`]): a 4x4 block of pixels.
+/// Rays in a packet ([`Scene::trace_packet`]): an 8x4 block of pixels.
 pub const PACKET: usize = 32;
 
 /// A hit (or miss) together with the number of walk moves it took.

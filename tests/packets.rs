@@ -61,10 +61,13 @@ fn packet_from(origin: Vec3, mut dirs: impl FnMut(usize) -> Vec3) -> Option<[Ray
     rays.try_into().ok()
 }
 
-/// A camera's 4x4 block of pixels at `(x, y)`, or the packet of a
-/// perturbed block: lanes from other origins, lanes with other signs.
+/// Width of a camera's block of pixels in a packet (its height makes
+/// [`PACKET`] rays).
+const WIDTH: u32 = 8;
+
+/// A camera's block of pixels at `(x, y)`: rows of [`WIDTH`].
 fn camera_block(camera: &Camera, x: u32, y: u32) -> [Ray; PACKET] {
-    core::array::from_fn(|i| camera.get_ray(x + i as u32 % 4, y + i as u32 / 4))
+    core::array::from_fn(|i| camera.get_ray(x + i as u32 % WIDTH, y + i as u32 / WIDTH))
 }
 
 /// A small random scene: speckled blocks in a box near the origin.
@@ -140,8 +143,8 @@ fn camera_blocks_over_the_terrain_are_the_one_ray_walks_hits() {
             ..CameraSettings::default()
         })
         .unwrap();
-        for y in (0..48).step_by(4) {
-            for x in (0..64).step_by(4) {
+        for y in (0..48).step_by(PACKET / WIDTH as usize) {
+            for x in (0..64).step_by(WIDTH as usize) {
                 answered += check(&scene, &camera_block(&camera, x, y)).unwrap();
                 lanes += 2 * PACKET as u32;
             }

@@ -11,7 +11,7 @@ use crate::math::tan32;
 use crate::render::view::{basis, unit, Projection};
 
 mod block;
-pub(crate) use block::{BLOCK, BLOCK_W};
+pub(crate) use block::{BLOCK_HEIGHT, BLOCK_WIDTH};
 
 /// The seven camera parameters of the seed paper.
 #[derive(Clone, Copy, Debug, PartialEq)]

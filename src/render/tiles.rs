@@ -2,7 +2,7 @@
 //! [`TILE`] x [`TILE`] at a time, each square's rays starting at the
 //! distance its frustum of rays is known to be clear ([`Scene::clear_distance`]).
 //! A kernel whose pixels are one ray each has its tiles' rays traced 16 at
-//! a time, a 4x4 block per packet ([`Scene::trace_packet`]), in wider
+//! a time, an 8x4 block per packet ([`Scene::trace_packet`]), in wider
 //! tiles.
 //!
 //! The clear distance only moves where walks begin, never what they hit, so
@@ -11,7 +11,7 @@
 //! byte-identical.
 
 use crate::geom::Ray;
-use crate::render::camera::{Camera, BLOCK, BLOCK_W};
+use crate::render::camera::{Camera, BLOCK_HEIGHT, BLOCK_WIDTH};
 #[cfg(feature = "path")]
 use crate::render::rounds::PixelSamples;
 use crate::render::shader::Kernel;
@@ -37,7 +37,7 @@ const PACKET_TILE: u32 = 64;
 
 /// Renders every pixel of `rect` with `kernel`, tile by tile (row-major
 /// tiles; inside a tile, row-major pixels or, for a kernel whose pixels
-/// are one ray, row-major 4x4 blocks), handing `put(dx, dy, rgba)` each
+/// are one ray, row-major 8x4 blocks), handing `put(dx, dy, rgba)` each
 /// pixel at its offset inside `rect`. Allocates nothing.
 pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
     kernel: &K,
@@ -83,7 +83,7 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
 }
 
 /// The pixels of `tile` (of `rect`) for a [`Kernel::one_ray`] kernel: its
-/// whole 4x4 blocks traced as packets, the lanes a packet leaves and the
+/// whole 8x4 blocks traced as packets, the lanes a packet leaves and the
 /// pixels of partial blocks one ray at a time, each shaded by the kernel.
 #[allow(clippy::too_many_arguments)]
 fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
@@ -105,14 +105,14 @@ fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
         put(dx, dy, rgba);
         *stats += rays;
     };
-    for by in (tile.dy0..tile.dy1).step_by(BLOCK as usize) {
-        for bx in (tile.dx0..tile.dx1).step_by(BLOCK_W as usize) {
-            let whole = by + BLOCK <= tile.dy1 && bx + BLOCK_W <= tile.dx1;
+    for by in (tile.dy0..tile.dy1).step_by(BLOCK_HEIGHT as usize) {
+        for bx in (tile.dx0..tile.dx1).step_by(BLOCK_WIDTH as usize) {
+            let whole = by + BLOCK_HEIGHT <= tile.dy1 && bx + BLOCK_WIDTH <= tile.dx1;
             let block = Tile {
                 dx0: bx,
                 dy0: by,
-                dx1: (bx + BLOCK_W).min(tile.dx1),
-                dy1: (by + BLOCK).min(tile.dy1),
+                dx1: (bx + BLOCK_WIDTH).min(tile.dx1),
+                dy1: (by + BLOCK_HEIGHT).min(tile.dy1),
             };
             let ray_at = |(dx, dy): (u32, u32)| {
                 camera.get_ray(rect.x.wrapping_add(dx), rect.y.wrapping_add(dy))
@@ -129,8 +129,8 @@ fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
             for (i, ray) in rays.iter().enumerate() {
                 let hit = (answered >> i & 1 != 0).then_some(hits[i]);
                 one(
-                    bx + i as u32 % BLOCK_W,
-                    by + i as u32 / BLOCK_W,
+                    bx + i as u32 % BLOCK_WIDTH,
+                    by + i as u32 / BLOCK_WIDTH,
                     ray,
                     hit,
                     memory,

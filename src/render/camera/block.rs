@@ -1,4 +1,4 @@
-//! A camera's rays for a 4x4 block of pixels, sixteen at a time: the
+//! A camera's rays for an 8x4 block of pixels, four at a time: the
 //! packets the tiles trace ([`crate::Scene::trace_packet`]).
 
 use glam::{Vec3A, Vec4};
@@ -8,21 +8,24 @@ use crate::render::camera::Camera;
 use crate::scene::PACKET;
 
 /// Side of a block of pixels: [`PACKET`] rays.
-pub(crate) const BLOCK: u32 = 4;
-pub(crate) const BLOCK_W: u32 = 8;
-const _: () = assert!((BLOCK * BLOCK_W) as usize == PACKET);
+/// Width of a block of pixels.
+pub(crate) const BLOCK_WIDTH: u32 = 8;
+/// Height of a block of pixels: [`PACKET`] rays in all.
+pub(crate) const BLOCK_HEIGHT: u32 = 4;
+const _: () = assert!((BLOCK_WIDTH * BLOCK_HEIGHT) as usize == PACKET);
 
 impl Camera {
-    /// The rays through the centers of the 4x4 pixels from `(i, j)`: lane
-    /// `k` is pixel `(i + k % 4, j + k / 4)`'s, bit for bit the ray
-    /// [`Camera::get_ray`] gives it. A row of four is computed at once,
+    /// The rays through the centers of the 8x4 pixels from `(i, j)`: lane
+    /// `k` is pixel `(i + k % 8, j + k / 8)`'s, bit for bit the ray
+    /// [`Camera::get_ray`] gives it. Four rays are computed at once,
     /// lane by lane with [`Ray::new`]'s operations in its order, so the
     /// divisions and square roots that bound a lone ray's time overlap.
     #[must_use]
     pub(crate) fn block_rays(&self, i: u32, j: u32) -> [Ray; PACKET] {
         let mut rays = [self.forward; PACKET];
         for quad in 0..PACKET as u32 / 4 {
-            let (row, half) = (quad / 2, quad % 2);
+            let quads_per_row = BLOCK_WIDTH / 4;
+            let (row, half) = (quad / quads_per_row, quad % quads_per_row);
             let y = j.wrapping_add(row);
             let columns = [0, 1, 2, 3].map(|dx| i.wrapping_add(half * 4 + dx));
             let lanes = &mut rays[(quad * 4) as usize..][..4];
@@ -105,7 +108,7 @@ mod tests {
             let (i, j) = if block.0 % 7 == 0 { (u32::MAX - 2, u32::MAX - 1) } else { (i, j) };
             let rays = camera.block_rays(i, j);
             for (k, ray) in rays.iter().enumerate() {
-                let (x, y) = (i.wrapping_add(k as u32 % 4), j.wrapping_add(k as u32 / 4));
+                let (x, y) = (i.wrapping_add(k as u32 % 8), j.wrapping_add(k as u32 / 8));
                 let lone = camera.get_ray(x, y);
                 let bits = |r: &crate::geom::Ray| {
                     let (o, d, inv) = r.lanes();

@@ -1,16 +1,19 @@
-//! Tracing a packet of rays through an `OctreeScene`: sixteen rays from
-//! one origin, whose directions share their signs (a 4x4 block of a
+//! Tracing a packet of rays through an `OctreeScene`: 32 rays from
+//! one origin, whose directions share their signs (an 8x4 block of a
 //! camera's pixels), taken down the tree together, front to back.
 //!
-//! Each lane keeps the times at which its ray crosses the planes of the
-//! cube the packet is in, as the scalar walk computes every crossing:
-//! `(plane - origin) * inv_dir`, one rounding each. A child's slabs are
-//! its parent's planes on one side and the midplanes on the other, so a
-//! node costs three products per lane (its midplanes) and each child a
-//! few maxima and minima; the lanes that enter a child go down into it
-//! together, in the order every ray of the packet meets the children
-//! (octants by index with the down-moving axes flipped). A lane leaves
-//! the packet at its first solid voxel.
+//! The packet goes down the tree depth first, a node's children in the
+//! order every one of its rays meets them (octants by index with the
+//! down-moving axes flipped), until every lane has left it at its first
+//! solid voxel. Branches are taken by the packet's hull: per axis, the
+//! earliest near-plane and the latest far-plane crossing of any lane,
+//! from the least and the greatest reciprocal direction (one product
+//! each, eight children tested at once). In a leaf (a brick, or a solid
+//! cube) each lane keeps its own crossing times, computed as the scalar
+//! walk computes every crossing, `(plane - origin) * inv_dir`, a child's
+//! slabs being its parent's planes on one side and the midplanes on the
+//! other; a child enters the lanes that enter it, after the hull has
+//! skipped those no lane can.
 //!
 //! # Why the hits are the scalar walk's, bit for bit
 //! The walk is in a cell from the key that enters it (the latest of its
@@ -37,7 +40,7 @@ use crate::storage::octree::grid::pow2;
 use crate::storage::octree::node::{brick_bit, child_offset, child_rank, Node, NodeKind, GROUP};
 use crate::storage::octree::OctreeScene;
 
-/// One quantity on a packet's sixteen lanes: four `Vec4`s (SSE or NEON
+/// One quantity on a packet's 32 lanes: eight `Vec4`s (SSE or NEON
 /// registers where glam has them, plain floats elsewhere).
 type Wide = [Vec4; PACKET / 4];
 
