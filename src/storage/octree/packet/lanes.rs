@@ -1,0 +1,273 @@
+//! A packet's lanes: what the octree's packet walk (`packet.rs`) asks of
+//! its 32 rays, on glam's four-lane vectors. The packet's hull (per axis,
+//! the earliest near and the latest far crossing of any lane) decides
+//! which children the packet may enter; each lane's own crossing times
+//! (`Slabs`) decide which lanes enter a leaf's child, and which visit a
+//! voxel. Every time is a crossing the scalar walk computes the same way,
+//! `(plane - origin) * inv_dir`.
+
+use glam::{BVec3A, BVec4A, Vec3A, Vec4};
+
+use crate::geom::Ray;
+use crate::scene::PACKET;
+
+/// One quantity on a packet's 32 lanes: eight `Vec4`s (SSE or NEON
+/// registers where glam has them, plain floats elsewhere).
+pub(super) type Wide = [Vec4; PACKET / 4];
+
+/// Lanes whose direction has a reciprocal at least this large on some
+/// axis go back to the caller: their crossing times could overflow.
+pub(super) const MAX_INV: f32 = 4_294_967_296.0;
+
+/// A packet's shared origin and signs, and its lanes' reciprocals.
+pub(super) struct Packet {
+    pub(super) origin: Vec3A,
+    /// The reciprocal direction per axis, per lane.
+    pub(super) inv: [Wide; 3],
+    /// The least and the greatest reciprocal per axis over the lanes.
+    pub(super) inv_lo: Vec3A,
+    pub(super) inv_hi: Vec3A,
+    /// The axes every lane moves down along.
+    pub(super) down: BVec3A,
+    /// The same as bits (`x | y << 1 | z << 2`).
+    pub(super) flip: usize,
+    /// The least far crossing of a cube a lane may enter: the caller's
+    /// clear distance, and ahead of the origin (the least positive float
+    /// when the clear distance is 0).
+    pub(super) floor: f32,
+}
+
+impl Packet {
+    /// The packet of the lanes of `rays` it can take, and those lanes (a
+    /// bit each): the rays from the first ray's origin that move along
+    /// every axis, with the first ray's signs and reciprocals below
+    /// [`MAX_INV`]. `clear` is the caller's clear distance.
+    #[inline]
+    pub(super) fn of(rays: &[Ray; PACKET], clear: f32) -> (Packet, u32) {
+        let (origin, first_dir, _) = rays[0].lanes();
+        let down = first_dir.cmplt(Vec3A::ZERO);
+        let mut inv = [[Vec4::ZERO; PACKET / 4]; 3];
+        let (mut inv_lo, mut inv_hi) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
+        let mut taken = 0u32;
+        for (i, ray) in rays.iter().enumerate() {
+            let (o, dir, inv_dir) = ray.lanes();
+            let moving = dir.cmpne(Vec3A::ZERO) & inv_dir.abs().cmplt(Vec3A::splat(MAX_INV));
+            let same = o.to_array().map(f32::to_bits) == origin.to_array().map(f32::to_bits);
+            if same && moving.all() && dir.cmplt(Vec3A::ZERO).bitmask() == down.bitmask() {
+                taken |= 1 << i;
+                inv_lo = inv_lo.min(inv_dir);
+                inv_hi = inv_hi.max(inv_dir);
+            }
+            for (axis, wide) in inv.iter_mut().enumerate() {
+                wide[i / 4][i % 4] = inv_dir[axis];
+            }
+        }
+        let packet = Packet {
+            origin,
+            inv,
+            inv_lo,
+            inv_hi,
+            down,
+            flip: down.bitmask() as usize,
+            floor: clear.max(f32::from_bits(1)),
+        };
+        (packet, taken)
+    }
+
+    /// The planes of the cube of side `side` at `corner` that the lanes
+    /// enter it by (near) and leave it by (far), per axis.
+    #[inline(always)]
+    pub(super) fn slab_planes(&self, corner: Vec3A, side: f32) -> (Vec3A, Vec3A) {
+        let (low, high) = (corner, corner + side);
+        (
+            Vec3A::select(self.down, high, low),
+            Vec3A::select(self.down, low, high),
+        )
+    }
+
+    /// The earliest and the latest time at which any lane crosses each
+    /// axis' plane of `planes`: the crossings `(plane - origin) * inv`
+    /// of the least and the greatest reciprocal, as rounding keeps the
+    /// order of products by one factor.
+    #[inline(always)]
+    pub(super) fn spans(&self, planes: Vec3A) -> (Vec3A, Vec3A) {
+        let from_origin = planes - self.origin;
+        let ahead = from_origin.cmpge(Vec3A::ZERO);
+        let (by_lo, by_hi) = (from_origin * self.inv_lo, from_origin * self.inv_hi);
+        (
+            Vec3A::select(ahead, by_lo, by_hi),
+            Vec3A::select(ahead, by_hi, by_lo),
+        )
+    }
+}
+
+/// What the packet's lanes may do in a cube: per axis, the earliest near
+/// crossing and the latest far crossing of any lane.
+#[derive(Clone, Copy)]
+pub(super) struct Hull {
+    pub(super) near: Vec3A,
+    pub(super) far: Vec3A,
+}
+
+/// Bit `i` of `octants` (a bit per octant) at bit `i ^ flip`: the octants
+/// in the order of a walk whose axes in `flip` run down.
+#[inline(always)]
+pub(super) fn in_flipped_order(octants: u8, flip: usize) -> u8 {
+    let mut bits = octants;
+    if flip & 1 != 0 {
+        bits = (bits & 0x55) << 1 | (bits & 0xaa) >> 1;
+    }
+    if flip & 2 != 0 {
+        bits = (bits & 0x33) << 2 | (bits & 0xcc) >> 2;
+    }
+    if flip & 4 != 0 {
+        bits = bits.rotate_left(4);
+    }
+    bits
+}
+
+/// Lanes `i` of four where bit 0 of `i` is set, and bit 1: the children
+/// beyond the midplane of x, and of y, among four of one z half.
+pub(super) const BEYOND_X: BVec4A = BVec4A::new(false, true, false, true);
+pub(super) const BEYOND_Y: BVec4A = BVec4A::new(false, false, true, true);
+
+impl Hull {
+    /// The hull of child `i` (its octant with the down-moving axes
+    /// flipped: bit `a` set, beyond the midplane of axis `a`), whose
+    /// midplanes the lanes cross from `mid_early` to `mid_late`.
+    #[inline(always)]
+    pub(super) fn child(self, i: usize, mid_early: Vec3A, mid_late: Vec3A) -> Hull {
+        let beyond = BVec3A::new(i & 1 != 0, i & 2 != 0, i & 4 != 0);
+        Hull {
+            near: Vec3A::select(beyond, mid_early, self.near),
+            far: Vec3A::select(beyond, self.far, mid_late),
+        }
+    }
+
+    /// [`Hull::entered`] for the eight children at once: bit `i` for child
+    /// `i` ([`Hull::child`]).
+    #[inline(always)]
+    pub(super) fn children_entered(self, mid_early: Vec3A, mid_late: Vec3A, floor: f32) -> u8 {
+        let pick = |beyond, (near, mid): (f32, f32)| {
+            Vec4::select(beyond, Vec4::splat(mid), Vec4::splat(near))
+        };
+        let near_xy = pick(BEYOND_X, (self.near.x, mid_early.x))
+            .max(pick(BEYOND_Y, (self.near.y, mid_early.y)));
+        let far_xy =
+            pick(BEYOND_X, (mid_late.x, self.far.x)).min(pick(BEYOND_Y, (mid_late.y, self.far.y)));
+        let floor = Vec4::splat(floor);
+        let half = |near_z: f32, far_z: f32| {
+            let (near, far) = (
+                near_xy.max(Vec4::splat(near_z)),
+                far_xy.min(Vec4::splat(far_z)),
+            );
+            (near.cmple(far) & far.cmpge(floor)).bitmask() as u8
+        };
+        half(self.near.z, mid_late.z) | half(mid_early.z, self.far.z) << 4
+    }
+
+    /// Whether some lane may enter the cube at or after `floor`: never
+    /// false when a lane's own crossings enter it (each lane's latest near
+    /// crossing is no earlier, its earliest far one no later).
+    #[inline(always)]
+    pub(super) fn entered(self, floor: f32) -> bool {
+        let far = self.far.min_element();
+        self.near.max_element() <= far && far >= floor
+    }
+}
+
+/// The crossing times of a cube's near and far planes per axis, per lane.
+#[derive(Clone, Copy)]
+pub(super) struct Slabs<'a> {
+    pub(super) near: [&'a Wide; 3],
+    pub(super) far: [&'a Wide; 3],
+}
+
+/// The times at which the lanes cross the plane at `plane` of `axis`.
+#[inline(always)]
+pub(super) fn crossings(packet: &Packet, axis: usize, plane: f32) -> Wide {
+    let from_origin = Vec4::splat(plane - packet.origin[axis]);
+    packet.inv[axis].map(|inv| from_origin * inv)
+}
+
+/// The lanes (bits) whose ray may enter the cube of `slabs` at or after
+/// the clear distance: those whose latest near crossing is no later than
+/// their earliest far one, which is at least `floor` ([`Packet::floor`]).
+/// Never leaves out a lane that visits one of the cube's cells.
+#[inline(always)]
+pub(super) fn entering(slabs: &Slabs, floor: f32) -> u32 {
+    let floor = Vec4::splat(floor);
+    let mut lanes = 0;
+    for k in 0..PACKET / 4 {
+        let (near, far) = latest_and_earliest(slabs, k);
+        let enters = near.cmple(far) & far.cmpge(floor);
+        lanes |= enters.bitmask() << (4 * k);
+    }
+    lanes
+}
+
+/// Lanes `4k..4k + 4`' latest near crossing and earliest far crossing.
+#[inline(always)]
+pub(super) fn latest_and_earliest(slabs: &Slabs, k: usize) -> (Vec4, Vec4) {
+    let [n0, n1, n2] = slabs.near;
+    let [f0, f1, f2] = slabs.far;
+    (n0[k].max(n1[k]).max(n2[k]), f0[k].min(f1[k]).min(f2[k]))
+}
+
+/// A voxel's lanes: those that surely visit it (entry strictly before
+/// exit, ahead of the origin), those the order of equal keys decides, and
+/// for each lane its entry time and whether it enters through a plane of
+/// z, and else of y (the latest near crossing, ties to the highest axis:
+/// the walk's key).
+pub(super) struct Visits {
+    pub(super) sure: u32,
+    pub(super) tied: u32,
+    pub(super) entry: Wide,
+    pub(super) through_z: u32,
+    pub(super) through_y: u32,
+}
+
+/// [`Visits`] of the voxel whose crossings are `slabs`.
+#[inline(always)]
+pub(super) fn visiting(slabs: &Slabs) -> Visits {
+    let mut visits = Visits {
+        sure: 0,
+        tied: 0,
+        entry: [Vec4::ZERO; PACKET / 4],
+        through_z: 0,
+        through_y: 0,
+    };
+    for k in 0..PACKET / 4 {
+        let (near, far) = latest_and_earliest(slabs, k);
+        let ahead: BVec4A = near.cmpgt(Vec4::ZERO);
+        let shift = 4 * k;
+        visits.sure |= (near.cmplt(far) & ahead).bitmask() << shift;
+        visits.tied |= (near.cmpeq(far) | (near.cmple(far) & !ahead)).bitmask() << shift;
+        visits.entry[k] = near;
+        visits.through_z |= slabs.near[2][k].cmpeq(near).bitmask() << shift;
+        visits.through_y |= slabs.near[1][k].cmpeq(near).bitmask() << shift;
+    }
+    visits
+}
+
+/// The octants (a bit each) for which `is` holds.
+#[inline(always)]
+pub(super) fn present(is: impl Fn(usize) -> bool) -> u8 {
+    (0..8).fold(0, |bits, octant| bits | u8::from(is(octant)) << octant)
+}
+
+/// The set bits of `lanes`, lowest first.
+#[inline(always)]
+pub(super) fn bits(mut lanes: u32) -> impl Iterator<Item = usize> {
+    core::iter::from_fn(move || {
+        let lane = lanes.trailing_zeros() as usize;
+        lanes &= lanes.wrapping_sub(1);
+        (lane < 32).then_some(lane)
+    })
+}
+
+/// Lane `lane` of `wide`.
+#[inline(always)]
+pub(super) fn lane(wide: &Wide, lane: usize) -> f32 {
+    wide[lane / 4][lane % 4]
+}
