@@ -179,6 +179,7 @@ impl Ray {
     /// The ray of the parts [`Ray::from_lanes`] computes, computed by a
     /// caller with its operations (a camera's block of rays, several at
     /// once): `dir` unit, `inv_dir` its reciprocal, both finite.
+    #[cfg(feature = "packets")]
     #[inline]
     pub(crate) fn from_parts(origin: Vec3A, dir: Vec3A, inv_dir: Vec3A) -> Self {
         Self {

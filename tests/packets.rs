@@ -3,6 +3,7 @@
 //! packets of camera pixels, of diverging and axis-parallel directions,
 //! from origins on planes and corners, with clear distances up to the
 //! nearest hit.
+#![cfg(feature = "packets")]
 
 mod common;
 

@@ -10,7 +10,9 @@ use crate::geom::Ray;
 use crate::math::tan32;
 use crate::render::view::{basis, unit, Projection};
 
+#[cfg(feature = "packets")]
 mod block;
+#[cfg(feature = "packets")]
 pub(crate) use block::{BLOCK_HEIGHT, BLOCK_WIDTH};
 
 /// The seven camera parameters of the seed paper.

@@ -5,7 +5,9 @@
 //! for exactly those effects (over the shading math of [`shade`], the sample
 //! patterns of [`sampling`] and the seed paper's [`debug_view`]); the
 //! [`scalar`] renderer runs it over rows, crops or whole frames into a
-//! caller's `&mut [u32]`, counting rays in [`stats`].
+//! caller's `&mut [u32]`, counting rays in [`stats`]. A frame of one ray
+//! per pixel has its camera rays traced in packets (`packets`, feature
+//! `packets`).
 //!
 //! Scenes with metal, glass or emitters ([`plan`] decides, from the
 //! materials the scene's voxels use) get the path tracer (`path`, feature
@@ -28,6 +30,8 @@ pub(crate) mod fit;
 #[cfg(feature = "std")]
 pub(crate) mod framebuffer;
 pub(crate) mod options;
+#[cfg(feature = "packets")]
+pub(crate) mod packets;
 #[cfg(feature = "rayon")]
 pub(crate) mod parallel;
 #[cfg(feature = "path")]

@@ -10,15 +10,16 @@
 //! the same pixels: the scalar, cropped and threaded renders stay
 //! byte-identical.
 
-use crate::geom::Ray;
-use crate::render::camera::{Camera, BLOCK_HEIGHT, BLOCK_WIDTH};
+use crate::render::camera::Camera;
+#[cfg(feature = "packets")]
+use crate::render::packets::{in_packets, PACKET_TILE};
 #[cfg(feature = "path")]
 use crate::render::rounds::PixelSamples;
 use crate::render::shader::Kernel;
 #[cfg(feature = "path")]
 use crate::render::shader::Resumable;
 use crate::render::stats::{RayStats, Rect};
-use crate::scene::{Hit, Reach, Scene, WalkMemory, PACKET};
+use crate::scene::{Scene, WalkMemory};
 
 /// Side of a tile in pixels: 256 rays share one walk of the tree's empty
 /// space. Measured at 1920x1080 on the size-250 terrain (with the first,
@@ -27,13 +28,16 @@ use crate::scene::{Hit, Reach, Scene, WalkMemory, PACKET};
 /// ms against 36 ms on one thread); 32 left 4.7 moves.
 pub(crate) const TILE: u32 = 16;
 
-/// Width of a tile whose rays go in packets (its height stays [`TILE`],
-/// the threaded renderer's band): a packet's own walk shares the empty
-/// space among its rays, and the beam pays for itself over wider tiles.
-/// Measured at 1920x1080, `--flat`, one thread, on an AMD EPYC VM: 16
-/// wide took 128 ms at size 250 (100 ms at 100), no beam at all 122 ms
-/// (96 ms), 64 wide 115 ms (86 ms), 128 and 256 the same as 64.
-const PACKET_TILE: u32 = 64;
+/// The width of the tiles of `kernel`'s pixels: [`TILE`], or wider for a
+/// kernel whose rays go in packets.
+fn tile_width(kernel: &impl Kernel) -> u32 {
+    #[cfg(feature = "packets")]
+    if kernel.one_ray() {
+        return PACKET_TILE;
+    }
+    let _ = kernel;
+    TILE
+}
 
 /// Renders every pixel of `rect` with `kernel`, tile by tile (row-major
 /// tiles; inside a tile, row-major pixels or, for a kernel whose pixels
@@ -54,7 +58,7 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
     // rectangle that reaches the last pixel of the largest frame.
     for dy0 in (0..rect.height).step_by(TILE as usize) {
         let dy1 = dy0 + TILE.min(rect.height - dy0);
-        let width = if kernel.one_ray() { PACKET_TILE } else { TILE };
+        let width = tile_width(kernel);
         for dx0 in (0..rect.width).step_by(width as usize) {
             let dx1 = dx0 + width.min(rect.width - dx0);
             let (x0, y0) = (rect.x.wrapping_add(dx0), rect.y.wrapping_add(dy0));
@@ -64,6 +68,7 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
             let frustum = beam.then(|| camera.tile_frustum(x0, y0, x1, y1)).flatten();
             let t_start = frustum.map_or(0.0, |f| scene.clear_distance(&f));
             let tile = Tile { dx0, dy0, dx1, dy1 };
+            #[cfg(feature = "packets")]
             if kernel.one_ray() && beam {
                 let memory = &mut memory;
                 in_packets(
@@ -80,64 +85,6 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
         }
     }
     stats
-}
-
-/// The pixels of `tile` (of `rect`) for a [`Kernel::one_ray`] kernel: its
-/// whole 8x4 blocks traced as packets, the lanes a packet leaves and the
-/// pixels of partial blocks one ray at a time, each shaded by the kernel.
-#[allow(clippy::too_many_arguments)]
-fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
-    kernel: &K,
-    scene: &'s S,
-    camera: &Camera,
-    rect: Rect,
-    tile: Tile,
-    t_start: f32,
-    memory: &mut WalkMemory<'s>,
-    put: &mut impl FnMut(u32, u32, u32),
-    stats: &mut RayStats,
-) {
-    let reach = Reach::after(t_start);
-    let mut one = |dx: u32, dy: u32, ray: &Ray, hit: Option<Option<Hit>>, memory: &mut _| {
-        let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
-        let hit = hit.unwrap_or_else(|| scene.trace_with(ray, reach, memory, None).hit);
-        let (rgba, rays) = kernel.shade(scene, ray, hit, (x, y), memory);
-        put(dx, dy, rgba);
-        *stats += rays;
-    };
-    for by in (tile.dy0..tile.dy1).step_by(BLOCK_HEIGHT as usize) {
-        for bx in (tile.dx0..tile.dx1).step_by(BLOCK_WIDTH as usize) {
-            let whole = by + BLOCK_HEIGHT <= tile.dy1 && bx + BLOCK_WIDTH <= tile.dx1;
-            let block = Tile {
-                dx0: bx,
-                dy0: by,
-                dx1: (bx + BLOCK_WIDTH).min(tile.dx1),
-                dy1: (by + BLOCK_HEIGHT).min(tile.dy1),
-            };
-            let ray_at = |(dx, dy): (u32, u32)| {
-                camera.get_ray(rect.x.wrapping_add(dx), rect.y.wrapping_add(dy))
-            };
-            if !whole {
-                for offset in block.offsets() {
-                    one(offset.0, offset.1, &ray_at(offset), None, memory);
-                }
-                continue;
-            }
-            let rays = camera.block_rays(rect.x.wrapping_add(bx), rect.y.wrapping_add(by));
-            let mut hits = [None; PACKET];
-            let answered = scene.trace_packet(&rays, t_start, &mut hits);
-            for (i, ray) in rays.iter().enumerate() {
-                let hit = (answered >> i & 1 != 0).then_some(hits[i]);
-                one(
-                    bx + i as u32 % BLOCK_WIDTH,
-                    by + i as u32 / BLOCK_WIDTH,
-                    ray,
-                    hit,
-                    memory,
-                );
-            }
-        }
-    }
 }
 
 /// Continues every pixel of `rect` to the end of round `round` (from 1)
@@ -189,16 +136,16 @@ pub(crate) fn resume_tiles<K: Resumable, S: Scene + ?Sized>(
 /// One tile: its pixels' offsets inside the rectangle, `dx0..dx1` by
 /// `dy0..dy1`.
 #[derive(Clone, Copy)]
-struct Tile {
-    dx0: u32,
-    dy0: u32,
-    dx1: u32,
-    dy1: u32,
+pub(super) struct Tile {
+    pub(super) dx0: u32,
+    pub(super) dy0: u32,
+    pub(super) dx1: u32,
+    pub(super) dy1: u32,
 }
 
 impl Tile {
     /// The tile's pixel offsets, row-major.
-    fn offsets(self) -> impl Iterator<Item = (u32, u32)> {
+    pub(super) fn offsets(self) -> impl Iterator<Item = (u32, u32)> {
         (self.dy0..self.dy1).flat_map(move |dy| (self.dx0..self.dx1).map(move |dx| (dx, dy)))
     }
 }

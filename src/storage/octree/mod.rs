@@ -15,7 +15,9 @@ use glam::IVec3;
 
 use crate::frustum::Frustum;
 use crate::geom::{IAabb, Ray};
-use crate::scene::{Hit, Reach, Scene, Traced, Visit, WalkMemory, PACKET};
+#[cfg(feature = "packets")]
+use crate::scene::{Hit, PACKET};
+use crate::scene::{Reach, Scene, Traced, Visit, WalkMemory};
 use crate::storage::octree::node::{brick_local, child_offset, NodeKind, BRICK};
 use crate::voxel::Palette;
 
@@ -28,6 +30,7 @@ pub(crate) mod build_par;
 pub(crate) mod grid;
 mod memory;
 pub(crate) mod node;
+#[cfg(feature = "packets")]
 mod packet;
 pub(crate) mod trace;
 
@@ -165,6 +168,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
         self.beam_distance(frustum)
     }
 
+    #[cfg(feature = "packets")]
     fn trace_packet(
         &self,
         rays: &[Ray; PACKET],
