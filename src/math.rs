@@ -62,6 +62,14 @@ pub(crate) const fn saturating_usize(v: u128) -> usize {
     }
 }
 
+/// `[f(0), f(1), f(2)]`, always inlined: per-axis arrays in hot loops,
+/// where `[0, 1, 2].map(f)` can be left as a call that copies its array.
+#[cfg(feature = "packets")]
+#[inline(always)]
+pub(crate) fn per_axis<T>(mut f: impl FnMut(usize) -> T) -> [T; 3] {
+    [f(0), f(1), f(2)]
+}
+
 #[cfg(test)]
 mod tests {
     use super::floor64;

@@ -12,7 +12,7 @@
 
 use crate::render::camera::Camera;
 #[cfg(feature = "packets")]
-use crate::render::packets::{in_packets, PACKET_TILE};
+use crate::render::packets::{in_packets, packets_pay, PACKET_TILE};
 #[cfg(feature = "path")]
 use crate::render::rounds::PixelSamples;
 use crate::render::shader::Kernel;
@@ -69,7 +69,7 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
             let t_start = frustum.map_or(0.0, |f| scene.clear_distance(&f));
             let tile = Tile { dx0, dy0, dx1, dy1 };
             #[cfg(feature = "packets")]
-            if kernel.one_ray() && beam {
+            if kernel.one_ray() && beam && packets_pay(camera, t_start) {
                 let memory = &mut memory;
                 in_packets(
                     kernel, scene, camera, rect, tile, t_start, memory, &mut put, &mut stats,

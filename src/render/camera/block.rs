@@ -4,6 +4,7 @@
 use glam::{Vec3A, Vec4};
 
 use crate::geom::Ray;
+use crate::math::per_axis;
 use crate::render::camera::Camera;
 use crate::scene::PACKET;
 
@@ -38,7 +39,7 @@ impl Camera {
             let x = Vec4::from_array(columns.map(|x| x as f32));
             let y = Vec4::splat(y as f32);
             // Per axis: the image-plane point minus the camera's position.
-            let to_pixel = [0, 1, 2].map(|axis| {
+            let to_pixel = per_axis(|axis| {
                 let corner = Vec4::splat(self.pixel00[axis]);
                 let (du, dv) = (self.delta_u[axis], self.delta_v[axis]);
                 corner + Vec4::splat(du) * x + Vec4::splat(dv) * y - Vec4::splat(self.center[axis])
@@ -47,11 +48,11 @@ impl Camera {
             // length (squares summed x, y, z), and the reciprocal.
             let [dx, dy, dz] = to_pixel;
             let largest = dx.abs().max(dy.abs()).max(dz.abs());
-            let scaled = to_pixel.map(|d| d / largest);
+            let scaled = per_axis(|axis| to_pixel[axis] / largest);
             let [sx, sy, sz] = scaled;
             let length = (sx * sx + sy * sy + sz * sz).sqrt();
-            let dir = scaled.map(|s| s / length);
-            let inv = dir.map(|d| Vec4::ONE / d);
+            let dir = per_axis(|axis| scaled[axis] / length);
+            let inv = per_axis(|axis| Vec4::ONE / dir[axis]);
             let usable = largest.cmpgt(Vec4::ZERO) & dx.is_finite_mask() & dy.is_finite_mask();
             let usable = (usable & dz.is_finite_mask()).bitmask();
             for (lane, ray) in lanes.iter_mut().enumerate() {

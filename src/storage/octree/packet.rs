@@ -35,6 +35,7 @@
 use glam::Vec3A;
 
 use crate::geom::{Face, Ray};
+use crate::math::per_axis;
 use crate::scene::{Hit, PACKET};
 use crate::storage::octree::grid::pow2;
 use crate::storage::octree::node::{brick_bit, child_offset, child_rank, Node, NodeKind, GROUP};
@@ -153,8 +154,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         found: &mut Found,
     ) -> u32 {
         let (near, far) = packet.slab_planes(corner, pow2(log));
-        let near = [0, 1, 2].map(|axis| crossings(packet, axis, near[axis]));
-        let far = [0, 1, 2].map(|axis| crossings(packet, axis, far[axis]));
+        let near = per_axis(|axis| crossings(packet, axis, near[axis]));
+        let far = per_axis(|axis| crossings(packet, axis, far[axis]));
         let slabs = &Slabs {
             near: [&near[0], &near[1], &near[2]],
             far: [&far[0], &far[1], &far[2]],
@@ -243,7 +244,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         if order == 0 {
             return 0;
         }
-        let mid = [0, 1, 2].map(|axis| crossings(packet, axis, corner[axis] + half));
+        let mid = per_axis(|axis| crossings(packet, axis, corner[axis] + half));
         let mut ended = 0;
         while order != 0 {
             let i = order.trailing_zeros() as usize;
@@ -299,7 +300,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             return hit | undecided;
         };
         let pos = corner.as_ivec3();
-        let faces = [0, 1, 2].map(|axis| Face::entered(axis, packet.flip >> axis & 1 == 0));
+        let faces = per_axis(|axis| Face::entered(axis, packet.flip >> axis & 1 == 0));
         for i in bits(hit) {
             let axis = if visits.through_z >> i & 1 != 0 {
                 2

@@ -187,7 +187,11 @@ pub(super) struct Slabs<'a> {
 #[inline(always)]
 pub(super) fn crossings(packet: &Packet, axis: usize, plane: f32) -> Wide {
     let from_origin = Vec4::splat(plane - packet.origin[axis]);
-    packet.inv[axis].map(|inv| from_origin * inv)
+    let mut times = packet.inv[axis];
+    for time in &mut times {
+        *time *= from_origin;
+    }
+    times
 }
 
 /// The lanes (bits) whose ray may enter the cube of `slabs` at or after
