@@ -16,9 +16,10 @@ use crate::scene::{Hit, Reach, Scene, WalkMemory, PACKET};
 /// Width of a tile whose rays go in packets (its height stays [`TILE`],
 /// the threaded renderer's band): a packet's own walk shares the empty
 /// space among its rays, and the beam pays for itself over wider tiles.
-/// Measured at 1920x1080, `--flat`, one thread, on an AMD EPYC VM: 16
-/// wide took 128 ms at size 250 (100 ms at 100), no beam at all 122 ms
-/// (96 ms), 64 wide 115 ms (86 ms), 128 and 256 the same as 64.
+/// Measured at 1920x1080, `--flat`, one thread, on an AMD EPYC VM, with
+/// the first packets (16 rays, branches by the hull one child at a time):
+/// 16 wide took 128 ms at size 250 (100 ms at 100), no beam at all 122
+/// ms (96 ms), 64 wide 115 ms (86 ms), 128 and 256 the same as 64.
 pub(super) const PACKET_TILE: u32 = 64;
 
 /// The widest a packet of rays may be, in voxels, where its walk begins:
