@@ -232,10 +232,11 @@ pub trait Scene {
     /// The hits of a packet of rays from one camera, each traced over
     /// [`Reach::after`]`(clear)`: for every lane `i` whose bit is set in
     /// the answer, `hits[i]` is exactly the hit [`Scene::trace_with`]
-    /// gives `rays[i]` over that reach, bit for bit. Lanes left unset
-    /// (their `hits` untouched) are the caller's to trace one by one.
-    /// What lets a storage walk coherent rays together; the default
-    /// answers no lane.
+    /// gives `rays[i]` over that reach, bit for bit, provided no ray hits
+    /// anything before `clear` (the promise of [`Reach::after`]). Lanes
+    /// left unset (their `hits` untouched) are the caller's to trace one
+    /// by one. What lets a storage walk coherent rays together; the
+    /// default answers no lane.
     #[inline]
     fn trace_packet(
         &self,

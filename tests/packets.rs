@@ -53,10 +53,13 @@ fn check(scene: &impl Scene, rays: &[Ray; PACKET]) -> Result<u32, TestCaseError>
     Ok(answered)
 }
 
-/// A packet from `origin`: `dirs(i)` gives lane `i`'s direction.
-fn packet_from(origin: Vec3, mut dirs: impl FnMut(usize) -> Vec3) -> Option<[Ray; PACKET]> {
+/// A packet whose lane `i` starts at and goes along `lane(i)`.
+fn packet_from(mut lane: impl FnMut(usize) -> (Vec3, Vec3)) -> Option<[Ray; PACKET]> {
     let rays: Vec<Ray> = (0..PACKET)
-        .map(|i| Ray::new(origin, dirs(i)))
+        .map(|i| {
+            let (origin, dir) = lane(i);
+            Ray::new(origin, dir)
+        })
         .collect::<Result<_, _>>()
         .ok()?;
     rays.try_into().ok()
@@ -87,37 +90,55 @@ proptest! {
 
     /// Diverging packets: random, special (axis-parallel, diagonal, signed
     /// zero) and aimed directions from one origin, on and off the grid,
-    /// inside and outside the volume.
+    /// inside and outside the volume; lanes from other origins and with
+    /// components too small to walk; volumes near the origin and millions
+    /// of voxels away.
     #[test]
     fn packet_lanes_are_the_one_ray_walks_hits(
         seed in any::<u64>(),
         percent in 1u64..60,
         size in (1i32..40, 1i32..40, 1i32..40),
         min in (-20i32..20, -20i32..20, -20i32..20),
-        kind in 0u32..4,
+        far in any::<bool>(),
+        kind in 0u32..6,
     ) {
         let size = IVec3::new(size.0, size.1, size.2);
-        let min = IVec3::new(min.0, min.1, min.2);
+        let min = IVec3::new(min.0, min.1, min.2) + if far { IVec3::new(3_000_000, -2_500_000, 1_000_000) } else { IVec3::ZERO };
         let scene = random_scene(seed, percent, size, min);
         let dense = DenseScene::build(&speckle(seed, percent), scene.bounds()).unwrap();
         let mut rng = Rng::new(seed);
         let (lo, hi) = (min.as_vec3(), (min + size).as_vec3());
+        let mut answered = 0;
         for _ in 0..8 {
-            let origin = point_in(&mut rng, lo - size.as_vec3(), hi + size.as_vec3());
+            let mut origin = point_in(&mut rng, lo - size.as_vec3(), hi + size.as_vec3());
+            if kind == 3 {
+                // From outside the volume: the coherent packet a camera sends.
+                origin.y = hi.y + 1.0 + rng.range(0.0, 30.0);
+            }
             let aim = point_in(&mut rng, lo, hi) - origin;
-            let rays = packet_from(origin, |i| match kind {
+            let cone = |rng: &mut Rng| aim + random_dir(rng) * 0.05 * aim.length();
+            let rays = packet_from(|i| match kind {
                 // Lanes that diverge at once: any direction.
-                0 => random_dir(&mut rng),
-                1 => special_dir(&mut rng),
+                0 => (origin, random_dir(&mut rng)),
+                1 => (origin, special_dir(&mut rng)),
                 // A narrow cone toward the volume, some lanes exactly on
                 // axis-parallel or diagonal directions.
-                2 if i % 5 == 0 => special_dir(&mut rng),
-                _ => aim + random_dir(&mut rng) * 0.05 * aim.length(),
+                2 if i % 5 == 0 => (origin, special_dir(&mut rng)),
+                // Some lanes from another origin, a rounding away.
+                4 if i % 3 == 1 => (origin + Vec3::splat(origin.x.abs().max(1.0) * 1e-6), cone(&mut rng)),
+                // Some lanes with a component too small to cross a plane.
+                5 if i % 3 == 1 => (origin, Vec3::new(aim.x, 1e-12, aim.z)),
+                _ => (origin, cone(&mut rng)),
             });
             let Some(rays) = rays else { continue };
-            check(&scene, &rays)?;
+            answered += check(&scene, &rays)?;
             // A storage without packets answers no lane.
             prop_assert_eq!(dense.trace_packet(&rays, 0.0, &mut [None; PACKET]), 0);
+        }
+        // Rays from outside toward the solid voxels are taken: the check
+        // above is not vacuous.
+        if kind == 3 && !scene.is_empty() {
+            prop_assert!(answered > 0);
         }
     }
 }

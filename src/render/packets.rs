@@ -8,12 +8,9 @@ use crate::geom::Ray;
 use crate::render::camera::{Camera, BLOCK_HEIGHT, BLOCK_WIDTH};
 use crate::render::shader::Kernel;
 use crate::render::stats::{RayStats, Rect};
-use crate::render::tiles::Tile;
-#[cfg(doc)]
-use crate::render::tiles::TILE;
 use crate::scene::{Hit, Reach, Scene, WalkMemory, PACKET};
 
-/// Width of a tile whose rays go in packets (its height stays [`TILE`],
+/// Width of a tile whose rays go in packets (its height stays `TILE`,
 /// the threaded renderer's band): a packet's own walk shares the empty
 /// space among its rays, and the beam pays for itself over wider tiles.
 /// Measured at 1920x1080, `--flat`, one thread, on an AMD EPYC VM, with
@@ -37,16 +34,18 @@ pub(super) fn packets_pay(camera: &Camera, t_start: f32) -> bool {
     !camera.is_orthographic() && spread <= MAX_SPREAD
 }
 
-/// The pixels of `tile` (of `rect`) for a [`Kernel::one_ray`] kernel: its
-/// whole 8x4 blocks traced as packets, the lanes a packet leaves and the
-/// pixels of partial blocks one ray at a time, each shaded by the kernel.
+/// The pixels of `tile` (of `rect`; the tile's corner and size are
+/// offsets inside `rect`) for a [`Kernel::one_ray`] kernel: its whole 8x4
+/// blocks traced as packets, the lanes a packet leaves and the pixels of
+/// partial blocks one ray at a time, each shaded by the kernel, handed to
+/// `put(dx, dy, rgba)` at their offsets inside `rect`.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
     kernel: &K,
     scene: &'s S,
     camera: &Camera,
     rect: Rect,
-    tile: Tile,
+    tile: Rect,
     t_start: f32,
     memory: &mut WalkMemory<'s>,
     put: &mut impl FnMut(u32, u32, u32),
@@ -60,21 +59,17 @@ pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
         put(dx, dy, rgba);
         *stats += rays;
     };
-    for by in (tile.dy0..tile.dy1).step_by(BLOCK_HEIGHT as usize) {
-        for bx in (tile.dx0..tile.dx1).step_by(BLOCK_WIDTH as usize) {
-            let whole = by + BLOCK_HEIGHT <= tile.dy1 && bx + BLOCK_WIDTH <= tile.dx1;
-            let block = Tile {
-                dx0: bx,
-                dy0: by,
-                dx1: (bx + BLOCK_WIDTH).min(tile.dx1),
-                dy1: (by + BLOCK_HEIGHT).min(tile.dy1),
-            };
-            let ray_at = |(dx, dy): (u32, u32)| {
-                camera.get_ray(rect.x.wrapping_add(dx), rect.y.wrapping_add(dy))
-            };
-            if !whole {
-                for offset in block.offsets() {
-                    one(offset.0, offset.1, &ray_at(offset), None, memory);
+    // Offsets, which stay below the rectangle's size: no sum overflows.
+    let (dx1, dy1) = (tile.x + tile.width, tile.y + tile.height);
+    for by in (tile.y..dy1).step_by(BLOCK_HEIGHT as usize) {
+        for bx in (tile.x..dx1).step_by(BLOCK_WIDTH as usize) {
+            let (width, height) = ((dx1 - bx).min(BLOCK_WIDTH), (dy1 - by).min(BLOCK_HEIGHT));
+            if (width, height) != (BLOCK_WIDTH, BLOCK_HEIGHT) {
+                for dy in by..by + height {
+                    for dx in bx..bx + width {
+                        let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
+                        one(dx, dy, &camera.get_ray(x, y), None, memory);
+                    }
                 }
                 continue;
             }

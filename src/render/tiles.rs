@@ -1,9 +1,9 @@
 //! Primary rays in tiles: the pixels of a rectangle, a square of
 //! [`TILE`] x [`TILE`] at a time, each square's rays starting at the
 //! distance its frustum of rays is known to be clear ([`Scene::clear_distance`]).
-//! A kernel whose pixels are one ray each has its tiles' rays traced 16 at
-//! a time, an 8x4 block per packet ([`Scene::trace_packet`]), in wider
-//! tiles.
+//! A kernel whose pixels are one ray each has its tiles' rays traced 32 at
+//! a time, an 8x4 block per packet ([`Scene::trace_packet`],
+//! `render/packets.rs`), in wider tiles.
 //!
 //! The clear distance only moves where walks begin, never what they hit, so
 //! any tiling (a crop, a band of rows on one thread, a single pixel) gives
@@ -69,10 +69,17 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
             let t_start = frustum.map_or(0.0, |f| scene.clear_distance(&f));
             let tile = Tile { dx0, dy0, dx1, dy1 };
             #[cfg(feature = "packets")]
+            let offsets = Rect {
+                x: dx0,
+                y: dy0,
+                width: dx1 - dx0,
+                height: dy1 - dy0,
+            };
+            #[cfg(feature = "packets")]
             if kernel.one_ray() && beam && packets_pay(camera, t_start) {
                 let memory = &mut memory;
                 in_packets(
-                    kernel, scene, camera, rect, tile, t_start, memory, &mut put, &mut stats,
+                    kernel, scene, camera, rect, offsets, t_start, memory, &mut put, &mut stats,
                 );
                 continue;
             }
@@ -136,16 +143,16 @@ pub(crate) fn resume_tiles<K: Resumable, S: Scene + ?Sized>(
 /// One tile: its pixels' offsets inside the rectangle, `dx0..dx1` by
 /// `dy0..dy1`.
 #[derive(Clone, Copy)]
-pub(super) struct Tile {
-    pub(super) dx0: u32,
-    pub(super) dy0: u32,
-    pub(super) dx1: u32,
-    pub(super) dy1: u32,
+struct Tile {
+    dx0: u32,
+    dy0: u32,
+    dx1: u32,
+    dy1: u32,
 }
 
 impl Tile {
     /// The tile's pixel offsets, row-major.
-    pub(super) fn offsets(self) -> impl Iterator<Item = (u32, u32)> {
+    fn offsets(self) -> impl Iterator<Item = (u32, u32)> {
         (self.dy0..self.dy1).flat_map(move |dy| (self.dx0..self.dx1).map(move |dx| (dx, dy)))
     }
 }
