@@ -8,7 +8,7 @@ use crate::geom::Ray;
 use crate::render::camera::{Camera, BLOCK_HEIGHT, BLOCK_WIDTH};
 use crate::render::shader::Kernel;
 use crate::render::stats::{RayStats, Rect};
-use crate::scene::{Hit, Reach, Scene, WalkMemory, PACKET};
+use crate::scene::{Hit, Scene, WalkMemory, PACKET};
 
 /// Width of a tile whose rays go in packets (its height stays `TILE`,
 /// the threaded renderer's band): a packet's own walk shares the empty
@@ -51,11 +51,14 @@ pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
     put: &mut impl FnMut(u32, u32, u32),
     stats: &mut RayStats,
 ) {
-    let reach = Reach::after(t_start);
-    let mut one = |dx: u32, dy: u32, ray: &Ray, hit: Option<Option<Hit>>, memory: &mut _| {
+    // A pixel whose hit the packet found is shaded; any other is the
+    // kernel's own pixel (its ray walking alone).
+    let mut one = |dx: u32, dy: u32, traced: Option<(&Ray, Option<Hit>)>, memory: &mut _| {
         let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
-        let hit = hit.unwrap_or_else(|| scene.trace_with(ray, reach, memory, None).hit);
-        let (rgba, rays) = kernel.shade(scene, ray, hit, (x, y), memory);
+        let (rgba, rays) = match traced {
+            Some((ray, hit)) => kernel.shade(scene, ray, hit, (x, y), memory),
+            None => kernel.pixel(scene, x, y, t_start, memory),
+        };
         put(dx, dy, rgba);
         *stats += rays;
     };
@@ -67,8 +70,7 @@ pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
             if (width, height) != (BLOCK_WIDTH, BLOCK_HEIGHT) {
                 for dy in by..by + height {
                     for dx in bx..bx + width {
-                        let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
-                        one(dx, dy, &camera.get_ray(x, y), None, memory);
+                        one(dx, dy, None, memory);
                     }
                 }
                 continue;
@@ -77,14 +79,9 @@ pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
             let mut hits = [None; PACKET];
             let answered = scene.trace_packet(&rays, t_start, &mut hits);
             for (i, ray) in rays.iter().enumerate() {
-                let hit = (answered >> i & 1 != 0).then_some(hits[i]);
-                one(
-                    bx + i as u32 % BLOCK_WIDTH,
-                    by + i as u32 / BLOCK_WIDTH,
-                    ray,
-                    hit,
-                    memory,
-                );
+                let traced = (answered >> i & 1 != 0).then_some((ray, hits[i]));
+                let (dx, dy) = (bx + i as u32 % BLOCK_WIDTH, by + i as u32 / BLOCK_WIDTH);
+                one(dx, dy, traced, memory);
             }
         }
     }

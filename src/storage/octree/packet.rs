@@ -118,12 +118,10 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let (mid_early, mid_late) = packet.spans(corner + half);
         // The children in the order the rays meet them (`i`: the octant
         // with the down-moving axes flipped), present and entered.
-        let mut order = hull.children_entered(mid_early, mid_late, packet.floor)
+        let order = hull.children_entered(mid_early, mid_late, packet.floor)
             & in_flipped_order(children, packet.flip);
         let mut ended = 0;
-        while order != 0 {
-            let i = order.trailing_zeros() as usize;
-            order &= order - 1;
+        for i in bits(u32::from(order)) {
             let octant = i ^ packet.flip;
             let child = hull.child(i, mid_early, mid_late);
             let at = corner + child_offset(octant).as_vec3a() * half;
@@ -239,16 +237,14 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     ) -> u32 {
         let half = pow2(log - 1);
         let (mid_early, mid_late) = packet.spans(corner + half);
-        let mut order = hull.children_entered(mid_early, mid_late, packet.floor)
+        let order = hull.children_entered(mid_early, mid_late, packet.floor)
             & in_flipped_order(present, packet.flip);
         if order == 0 {
             return 0;
         }
         let mid = per_axis(|axis| crossings(packet, axis, corner[axis] + half));
         let mut ended = 0;
-        while order != 0 {
-            let i = order.trailing_zeros() as usize;
-            order &= order - 1;
+        for i in bits(u32::from(order)) {
             let octant = i ^ packet.flip;
             let mut child = Slabs {
                 near: slabs.near,
@@ -292,14 +288,10 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let visits = visiting(slabs);
         let (hit, undecided) = (visits.sure & lanes, visits.tied & lanes);
         found.undecided |= undecided;
-        // Every lane's hit is on one voxel, through one of three faces.
-        let Some(voxel) = self.palette.voxel(material) else {
-            for i in bits(hit) {
-                found.hits[i] = None;
-            }
-            return hit | undecided;
-        };
+        // Every lane's hit is on one voxel (one palette lookup, as every
+        // storage builds its hits), through one of three faces.
         let pos = corner.as_ivec3();
+        let on_voxel = Hit::from_palette(&self.palette, pos, None, 0.0, material);
         let faces = per_axis(|axis| Face::entered(axis, packet.flip >> axis & 1 == 0));
         for i in bits(hit) {
             let axis = if visits.through_z >> i & 1 != 0 {
@@ -307,12 +299,10 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             } else {
                 usize::from(visits.through_y >> i & 1 != 0)
             };
-            found.hits[i] = Some(Hit {
-                pos,
+            found.hits[i] = on_voxel.map(|hit| Hit {
                 face: Some(faces[axis]),
                 t: lane(&visits.entry, i),
-                material,
-                voxel,
+                ..hit
             });
         }
         hit | undecided
