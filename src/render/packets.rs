@@ -28,10 +28,11 @@ const MAX_SPREAD: f32 = 16.0;
 
 /// Whether a tile's rays, clear until `t_start`, are coherent enough for
 /// packets: an 8x4 block's rays are at most [`MAX_SPREAD`] voxels apart
-/// there. Never for an orthographic camera, whose rays share no origin.
+/// there, or clear forever (a tile of sky, whose rays packets only make).
+/// Never for an orthographic camera, whose rays share no origin.
 pub(super) fn packets_pay(camera: &Camera, t_start: f32) -> bool {
     let spread = t_start * camera.pixel_spread() * BLOCK_WIDTH as f32;
-    !camera.is_orthographic() && spread <= MAX_SPREAD
+    !camera.is_orthographic() && (spread <= MAX_SPREAD || t_start == f32::INFINITY)
 }
 
 /// The pixels of `tile` (of `rect`; the tile's corner and size are
@@ -77,7 +78,12 @@ pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
             }
             let rays = camera.block_rays(rect.x.wrapping_add(bx), rect.y.wrapping_add(by));
             let mut hits = [None; PACKET];
-            let answered = scene.trace_packet(&rays, t_start, &mut hits);
+            // Clear forever: every ray misses (the promise of `t_start`).
+            let answered = if t_start == f32::INFINITY {
+                u32::MAX
+            } else {
+                scene.trace_packet(&rays, t_start, &mut hits)
+            };
             for (i, ray) in rays.iter().enumerate() {
                 let traced = (answered >> i & 1 != 0).then_some((ray, hits[i]));
                 let (dx, dy) = (bx + i as u32 % BLOCK_WIDTH, by + i as u32 / BLOCK_WIDTH);
