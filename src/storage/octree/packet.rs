@@ -158,7 +158,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             near: [&near[0], &near[1], &near[2]],
             far: [&far[0], &far[1], &far[2]],
         };
-        let lanes = entering(slabs, packet.floor) & lanes;
+        let lanes = entering(slabs, packet.floor, lanes);
         if lanes == 0 {
             return 0;
         }
@@ -257,7 +257,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                     child.near[axis] = mid;
                 }
             }
-            let entering = entering(&child, packet.floor) & lanes;
+            let entering = entering(&child, packet.floor, lanes);
             if entering == 0 {
                 continue;
             }
@@ -285,7 +285,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         material: u8,
         found: &mut Found,
     ) -> u32 {
-        let visits = visiting(slabs);
+        let visits = visiting(slabs, lanes);
         let (hit, undecided) = (visits.sure & lanes, visits.tied & lanes);
         found.undecided |= undecided;
         // Every lane's hit is on one voxel (one palette lookup, as every

@@ -194,20 +194,31 @@ pub(super) fn crossings(packet: &Packet, axis: usize, plane: f32) -> Wide {
     times
 }
 
-/// The lanes (bits) whose ray may enter the cube of `slabs` at or after
-/// the clear distance: those whose latest near crossing is no later than
-/// their earliest far one, which is at least `floor` ([`Packet::floor`]).
-/// Never leaves out a lane that visits one of the cube's cells.
+/// The lanes of `lanes` (bits) whose ray may enter the cube of `slabs` at
+/// or after the clear distance: those whose latest near crossing is no
+/// later than their earliest far one, which is at least `floor`
+/// ([`Packet::floor`]). Never leaves out a lane that visits one of the
+/// cube's cells. Only the four-lane groups holding one of `lanes` are
+/// computed: a voxel of a far terrain covers few of a packet's pixels.
 #[inline(always)]
-pub(super) fn entering(slabs: &Slabs, floor: f32) -> u32 {
+pub(super) fn entering(slabs: &Slabs, floor: f32, lanes: u32) -> u32 {
     let floor = Vec4::splat(floor);
-    let mut lanes = 0;
-    for k in 0..PACKET / 4 {
+    let mut entered = 0;
+    for k in quads(lanes) {
         let (near, far) = latest_and_earliest(slabs, k);
         let enters = near.cmple(far) & far.cmpge(floor);
-        lanes |= enters.bitmask() << (4 * k);
+        entered |= enters.bitmask() << (4 * k);
     }
-    lanes
+    entered & lanes
+}
+
+/// The four-lane groups (`k`: lanes `4k..4k + 4`) holding a lane of
+/// `lanes`.
+#[inline(always)]
+pub(super) fn quads(lanes: u32) -> impl Iterator<Item = usize> {
+    let any = lanes | lanes >> 1;
+    let any = any | any >> 2;
+    bits((0..PACKET / 4).fold(0, |q, k| q | (any >> (4 * k) & 1) << k))
 }
 
 /// Lanes `4k..4k + 4`' latest near crossing and earliest far crossing.
@@ -231,9 +242,11 @@ pub(super) struct Visits {
     pub(super) through_y: u32,
 }
 
-/// [`Visits`] of the voxel whose crossings are `slabs`.
+/// [`Visits`] of the voxel whose crossings are `slabs`, for the lanes of
+/// `lanes` (the groups of four holding none are left out: their bits
+/// clear, their entries 0).
 #[inline(always)]
-pub(super) fn visiting(slabs: &Slabs) -> Visits {
+pub(super) fn visiting(slabs: &Slabs, lanes: u32) -> Visits {
     let mut visits = Visits {
         sure: 0,
         tied: 0,
@@ -241,7 +254,7 @@ pub(super) fn visiting(slabs: &Slabs) -> Visits {
         through_z: 0,
         through_y: 0,
     };
-    for k in 0..PACKET / 4 {
+    for k in quads(lanes) {
         let (near, far) = latest_and_earliest(slabs, k);
         let ahead: BVec4A = near.cmpgt(Vec4::ZERO);
         let shift = 4 * k;
