@@ -222,10 +222,13 @@ pub trait Scene {
     /// `frustum` hits a voxel: every such ray's hit, if any, has `t >=` the
     /// answer.
     /// What lets a tile of primary rays skip the empty space they share
-    /// ([`Reach::after`]). The default knows nothing and answers 0.
+    /// ([`Reach::after`]). `grain` is the side, in voxels, of the smallest
+    /// box worth looking into: 1 for the distance to the nearest voxel a
+    /// ray may reach, more for an earlier answer that costs less (a box of
+    /// that side counts whole). The default knows nothing and answers 0.
     #[inline]
-    fn clear_distance(&self, frustum: &Frustum) -> f32 {
-        let _ = frustum;
+    fn clear_distance(&self, frustum: &Frustum, grain: u32) -> f32 {
+        let _ = (frustum, grain);
         0.0
     }
 
@@ -312,8 +315,8 @@ macro_rules! forward_tracing {
         }
 
         #[inline]
-        fn clear_distance(&self, frustum: &$crate::frustum::Frustum) -> f32 {
-            $inner(self).clear_distance(frustum)
+        fn clear_distance(&self, frustum: &$crate::frustum::Frustum, grain: u32) -> f32 {
+            $inner(self).clear_distance(frustum, grain)
         }
 
         #[inline]

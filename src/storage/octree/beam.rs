@@ -49,9 +49,11 @@ const MARGIN: f32 = 1.0 - 1e-5;
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// A distance before which no ray inside `frustum` hits a voxel (0 when
     /// the apex touches a solid voxel, `+inf` when the frustum meets
-    /// none). Allocates nothing; visits nodes nearest first and skips every
-    /// box no closer than the best found.
-    pub(crate) fn beam_distance(&self, frustum: &Frustum) -> f32 {
+    /// none), looking no deeper than cubes of side `grain` (a cube that
+    /// small counts whole: the answer is earlier, and cheaper). Allocates
+    /// nothing; visits nodes nearest first and skips every box no closer
+    /// than the best found.
+    pub(crate) fn beam_distance(&self, frustum: &Frustum, grain: u32) -> f32 {
         if self.occupied.is_empty() {
             return f32::INFINITY;
         }
@@ -106,11 +108,13 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             if let Some((node, corner, log)) = visit.take() {
                 if let Some(distance) = self.reach(frustum, min + corner, 1 << log, best) {
                     match node.kind() {
+                        // (Every node holds a solid voxel.)
+                        _ if 1u32 << log <= grain => best = distance,
                         NodeKind::Solid(_) => best = distance,
                         NodeKind::Brick { occupancy, .. } => {
                             let corner = min + corner;
-                            let reach =
-                                self.brick_reach(frustum, corner, occupancy, best, near_first);
+                            let reach = self
+                                .brick_reach(frustum, corner, occupancy, best, near_first, grain);
                             best = best.min(reach);
                         }
                         NodeKind::Branch { children, first } if depth < DEPTH => {
@@ -157,7 +161,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// The nearest distance at which a ray of the frustum may reach one of
     /// a brick's solid voxels, if closer than `best` (else `best`): the
     /// voxels of each occupied 2x2x2 group that may itself meet the frustum
-    /// closer than `best`. Groups and voxels go in the frustum's
+    /// closer than `best` (the group whole, for a `grain` of 2 or more).
+    /// Groups and voxels go in the frustum's
     /// nearest-first octant order `near_first`, so that the first voxel
     /// found tends to be the nearest and the rest fail the distance test
     /// before the plane tests.
@@ -168,12 +173,18 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         occupancy: u64,
         mut best: f32,
         near_first: u32,
+        grain: u32,
     ) -> f32 {
         for group in 0..8 {
             let local = child_offset((group ^ near_first) as usize) * 2;
-            if occupancy & GROUP << brick_bit(local) == 0
-                || self.reach(frustum, corner + local, 2, best).is_none()
-            {
+            if occupancy & GROUP << brick_bit(local) == 0 {
+                continue;
+            }
+            let Some(distance) = self.reach(frustum, corner + local, 2, best) else {
+                continue;
+            };
+            if grain >= 2 {
+                best = distance;
                 continue;
             }
             for voxel in 0..8 {
