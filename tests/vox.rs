@@ -324,3 +324,52 @@ fn boxes_read_from_chunks_equal_voxel_by_voxel_reads() {
     let gap = voxtrace::IAabb::new(IVec3::new(100, -100, 0), IVec3::new(3_000_000, 100, 50));
     assert_eq!(model.classify(gap), voxtrace::Region::Empty);
 }
+
+#[test]
+fn row_ends_are_the_ends_of_every_row_of_voxels() {
+    let mut state = 11u64;
+    let mut next = |n: u32| {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 33) as u32 % n
+    };
+    for _ in 0..20 {
+        // A random cloud, placed twice (rows then cross chunks and
+        // negative coordinates).
+        let size = 1 + next(30) as u8;
+        let voxels = (0..1 + next(300))
+            .map(|_| Voxel {
+                x: next(u32::from(size)) as u8,
+                y: next(u32::from(size)) as u8,
+                z: next(u32::from(size)) as u8,
+                i: 1 + next(200) as u8,
+            })
+            .collect();
+        let model = Model {
+            size: Size {
+                x: size.into(),
+                y: size.into(),
+                z: size.into(),
+            },
+            voxels,
+        };
+        let offset = format!("{} -{} 3", next(40), next(40));
+        let data = scene(vec![model], &[(0, "-5 -9 -2", ""), (0, &offset, "")]);
+        let model = VoxModel::from_bytes(&bytes(&data)).unwrap();
+        // Brute force: per row (y, z), the least and the greatest x.
+        let mut rows = std::collections::BTreeMap::<(i32, i32), (i32, i32)>::new();
+        for p in model.positions() {
+            let span = rows.entry((p.y, p.z)).or_insert((p.x, p.x));
+            *span = (span.0.min(p.x), span.1.max(p.x));
+        }
+        let expected: BTreeSet<(i32, i32, i32)> = rows
+            .iter()
+            .flat_map(|(&(y, z), &(lo, hi))| [(lo, y, z), (hi, y, z)])
+            .collect();
+        let ends = model.row_ends();
+        let found: BTreeSet<(i32, i32, i32)> = ends.iter().map(|&p| p.into()).collect();
+        assert_eq!(found, expected);
+        assert_eq!(ends.len(), found.len(), "an end listed twice");
+    }
+}

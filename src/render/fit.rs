@@ -7,7 +7,7 @@
 //! on its inner side; the maximum of a linear function over a box is at a
 //! corner, so each box costs a few dot products.
 
-use glam::Vec3;
+use glam::{BVec4A, Vec3, Vec4};
 
 use crate::error::Error;
 use crate::math::tan32;
@@ -28,9 +28,35 @@ pub struct Framer {
     tan_v: f32,
     aspect: f32,
     fill: f32,
-    /// Maxima over the boxes of: the four perspective side planes
-    /// (right, left, top, bottom), then `+-right`, `+-up`, `-+forward`.
-    max: [f32; 10],
+    /// The functionals whose maxima the fit needs, as world vectors:
+    /// the four perspective side planes (right, left, top, bottom), then
+    /// `+-right`, `+-up`, `-+forward`; in lanes, twelve of them (the last
+    /// two repeat the first two).
+    functionals: Lanes,
+    /// Their maxima over the boxes, lane by lane.
+    max: [Vec4; 3],
+}
+
+/// Twelve vectors, lane by lane: the x, y and z components of four at a
+/// time, and the lanes whose component is not negative (where a linear
+/// function is largest over a box: its corner that is largest along those
+/// axes).
+#[derive(Clone, Copy, Debug)]
+struct Lanes {
+    components: [[Vec4; 3]; 3],
+    rising: [[BVec4A; 3]; 3],
+}
+
+impl Lanes {
+    fn of(vectors: [Vec3; 10]) -> Lanes {
+        let lane = |i: usize| vectors[if i < 10 { i } else { i - 10 }];
+        let component = |axis: usize| {
+            [0, 1, 2].map(|quad| Vec4::from_array([0, 1, 2, 3].map(|k| lane(4 * quad + k)[axis])))
+        };
+        let components = [component(0), component(1), component(2)];
+        let rising = components.map(|quads| quads.map(|c| c.cmpge(Vec4::ZERO)));
+        Lanes { components, rising }
+    }
 }
 
 impl Framer {
@@ -72,42 +98,50 @@ impl Framer {
             tan_v,
             aspect,
             fill,
-            max: [f32::NEG_INFINITY; 10],
+            functionals: Lanes::of(functionals(right, up, forward, tan_v * aspect, tan_v)),
+            max: [Vec4::NEG_INFINITY; 3],
         })
     }
 
-    /// The functionals whose maxima the fit needs, as world vectors.
-    fn functionals(&self) -> [Vec3; 10] {
-        let (r, u, f) = (self.right, self.up, self.forward);
-        [
-            r - f * self.tan_h,
-            -r - f * self.tan_h,
-            u - f * self.tan_v,
-            -u - f * self.tan_v,
-            r,
-            -r,
-            u,
-            -u,
-            -f,
-            f,
-        ]
+    /// Adds the box `[min, max]` (a voxel is `[p, p + 1]`): per
+    /// functional, the dot product with the box's corner that is largest
+    /// along its rising axes, in `Vec3::dot`'s order, four at a time.
+    #[inline]
+    pub fn add_box(&mut self, min: Vec3, max: Vec3) {
+        let Lanes {
+            components: [x, y, z],
+            rising,
+        } = &self.functionals;
+        let corner = |axis: usize, quad: usize| {
+            Vec4::select(
+                rising[axis][quad],
+                Vec4::splat(max[axis]),
+                Vec4::splat(min[axis]),
+            )
+        };
+        for (quad, m) in self.max.iter_mut().enumerate() {
+            let dot =
+                corner(0, quad) * x[quad] + corner(1, quad) * y[quad] + corner(2, quad) * z[quad];
+            // (Not `Vec4::max`, whose answer for NaN differs by target: a
+            // NaN corner leaves the maximum as it was.)
+            *m = Vec4::select(dot.cmpgt(*m), dot, *m);
+        }
     }
 
-    /// Adds the box `[min, max]` (a voxel is `[p, p + 1]`).
-    pub fn add_box(&mut self, min: Vec3, max: Vec3) {
-        let functionals = self.functionals();
-        for (m, a) in self.max.iter_mut().zip(functionals) {
-            // A linear function is largest over a box at the corner that is
-            // largest along each axis.
-            let corner = Vec3::select(a.cmpge(Vec3::ZERO), max, min);
-            *m = m.max(corner.dot(a));
+    /// The maxima over the boxes added, one per functional.
+    fn maxima(&self) -> [f32; 10] {
+        let lanes: [[f32; 4]; 3] = self.max.map(|quad| quad.to_array());
+        let mut maxima = [0.0; 10];
+        for (i, m) in maxima.iter_mut().enumerate() {
+            *m = lanes[i / 4][i % 4];
         }
+        maxima
     }
 
     /// Whether any box was added.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.max[8] == f32::NEG_INFINITY
+        self.maxima()[8] == f32::NEG_INFINITY
     }
 
     /// The fitted camera: `base` with the position and target (on the
@@ -116,10 +150,11 @@ impl Framer {
     /// was added or when the boxes' extent is not finite.
     #[must_use]
     pub fn settings(&self) -> Option<CameraSettings> {
-        if self.is_empty() || !self.max.iter().all(|m| m.is_finite()) {
+        let maxima = self.maxima();
+        if self.is_empty() || !maxima.iter().all(|m| m.is_finite()) {
             return None;
         }
-        let [r, l, t, b, a_max, a_min_neg, c_max, c_min_neg, b_min_neg, b_max] = self.max;
+        let [r, l, t, b, a_max, a_min_neg, c_max, c_min_neg, b_min_neg, b_max] = maxima;
         let near = -b_min_neg; // the closest any box comes along the view
         let (a, c, depth, projection) = match self.base.projection {
             Projection::Perspective => {
@@ -170,11 +205,30 @@ impl Framer {
         if self.is_empty() {
             return None;
         }
-        let [_, _, _, _, a_max, a_min_neg, c_max, c_min_neg, _, _] = self.max;
+        let [_, _, _, _, a_max, a_min_neg, c_max, c_min_neg, _, _] = self.maxima();
         let (pa, pc) = (point.dot(self.right), point.dot(self.up));
         let half_a = (a_max - pa).max(pa + a_min_neg);
         let half_c = (c_max - pc).max(pc + c_min_neg);
         let height = 2.0 * half_c.max(half_a / self.aspect) / self.fill;
         (height.is_finite() && height > 0.0).then_some(height)
     }
+}
+
+/// The functionals whose maxima the fit needs ([`Framer`]'s order), for a
+/// camera with basis `right`, `up`, `forward` and half-angle tangents
+/// `tan_h`, `tan_v`.
+fn functionals(right: Vec3, up: Vec3, forward: Vec3, tan_h: f32, tan_v: f32) -> [Vec3; 10] {
+    let (r, u, f) = (right, up, forward);
+    [
+        r - f * tan_h,
+        -r - f * tan_h,
+        u - f * tan_v,
+        -u - f * tan_v,
+        r,
+        -r,
+        u,
+        -u,
+        -f,
+        f,
+    ]
 }

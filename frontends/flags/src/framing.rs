@@ -33,7 +33,7 @@ impl Boxes<'_> {
         match self {
             Boxes::Bounds(b) => framer.add_box(b.min.as_vec3(), b.max.as_vec3()),
             Boxes::Model(model) => {
-                for p in model.positions() {
+                for p in model.row_ends() {
                     let p = p.as_vec3();
                     framer.add_box(p, p + 1.0);
                 }
