@@ -126,6 +126,19 @@ pub(super) fn in_flipped_order(octants: u8, flip: usize) -> u8 {
     bits
 }
 
+/// Per child `i` (bit `a` set: beyond the midplane of axis `a`), the
+/// axes it lies beyond: a table, as building the mask from bits costs
+/// more than the rest of [`Hull::child`].
+const BEYOND: [BVec3A; 8] = {
+    let mut masks = [BVec3A::FALSE; 8];
+    let mut i = 0;
+    while i < 8 {
+        masks[i] = BVec3A::new(i & 1 != 0, i & 2 != 0, i & 4 != 0);
+        i += 1;
+    }
+    masks
+};
+
 /// Lanes `i` of four where bit 0 of `i` is set, and bit 1: the children
 /// beyond the midplane of x, and of y, among four of one z half.
 pub(super) const BEYOND_X: BVec4A = BVec4A::new(false, true, false, true);
@@ -137,7 +150,7 @@ impl Hull {
     /// midplanes the lanes cross from `mid_early` to `mid_late`.
     #[inline(always)]
     pub(super) fn child(self, i: usize, mid_early: Vec3A, mid_late: Vec3A) -> Hull {
-        let beyond = BVec3A::new(i & 1 != 0, i & 2 != 0, i & 4 != 0);
+        let beyond = BEYOND[i & 7];
         Hull {
             near: Vec3A::select(beyond, mid_early, self.near),
             far: Vec3A::select(beyond, self.far, mid_late),
