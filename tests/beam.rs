@@ -31,9 +31,9 @@ fn check_tile<S: VoxelSource>(
     let (x1, y1) = (tx + tile_w, ty + tile_h);
     let frustum = camera.tile_frustum(tx, ty, x1, y1);
     let mut finer = f32::INFINITY;
-    // Single voxels (lone rays' grain) and bricks (packets'): the coarser
-    // answers no later, and neither is late.
-    for grain in [1, 4] {
+    // Single voxels (lone rays' grain), bricks, and cubes of 64 (packets'):
+    // the coarser answers no later, and none is late.
+    for grain in [1, 4, 64] {
         let t0 = frustum.map_or(0.0, |f| scene.clear_distance(&f, grain));
         prop_assert!(t0 >= 0.0, "negative clear distance {t0}");
         if grain > 1 {

@@ -20,12 +20,13 @@ use crate::scene::{Hit, Scene, WalkMemory, PACKET};
 pub(super) const PACKET_TILE: u32 = 64;
 
 /// The grain of a packet tile's clear distance ([`Scene::clear_distance`]):
-/// bricks count whole, as the packet walk crosses a brick's empty cells
+/// cubes of 64 count whole, as the packet walk crosses their empty cells
 /// about as fast as the beam would. Measured at 1920x1080, `--flat`, one
-/// thread, on an AMD EPYC VM, medians of 7: 84.5 ms at size 250 against
-/// 88.0 ms to single voxels, 68.8 ms against 70.2 at 100, 467 ms against
-/// 482 at 2048 (3 runs); 8-voxel cubes gave what bricks give.
-pub(super) const PACKET_GRAIN: u32 = 4;
+/// thread, on an AMD EPYC VM, medians of 7 to 9 interleaved: single
+/// voxels 88.0 ms at size 250, bricks (4) 84.5 ms, 8 the same as bricks;
+/// 64 against 4: 84.4 against 85.2 ms at 250, 463 against 471 at 2048;
+/// 256 no better than 64.
+pub(super) const PACKET_GRAIN: u32 = 64;
 
 /// The widest a packet of rays may be, in voxels, where its walk begins:
 /// beyond, rays that diverge go alone. Measured at 1920x1080, `--flat`,
