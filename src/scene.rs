@@ -224,8 +224,9 @@ pub trait Scene {
     /// What lets a tile of primary rays skip the empty space they share
     /// ([`Reach::after`]). `grain` is the side, in voxels, of the smallest
     /// box worth looking into: 1 for the distance to the nearest voxel a
-    /// ray may reach, more for an earlier answer that costs less (a box of
-    /// that side counts whole). The default knows nothing and answers 0.
+    /// ray may reach, more for an earlier answer that costs less (a
+    /// storage may count a box of at most that side whole). The default
+    /// knows nothing and answers 0.
     #[inline]
     fn clear_distance(&self, frustum: &Frustum, grain: u32) -> f32 {
         let _ = (frustum, grain);

@@ -49,8 +49,9 @@ const MARGIN: f32 = 1.0 - 1e-5;
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// A distance before which no ray inside `frustum` hits a voxel (0 when
     /// the apex touches a solid voxel, `+inf` when the frustum meets
-    /// none), looking no deeper than cubes of side `grain` (a cube that
-    /// small counts whole: the answer is earlier, and cheaper). Allocates
+    /// none), looking no deeper than the nodes of side at most `grain`
+    /// (such a node counts whole: the answer is earlier, and cheaper; a
+    /// grain below a brick's side looks at single voxels). Allocates
     /// nothing; visits nodes nearest first and skips every box no closer
     /// than the best found.
     pub(crate) fn beam_distance(&self, frustum: &Frustum, grain: u32) -> f32 {
@@ -113,8 +114,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                         NodeKind::Solid(_) => best = distance,
                         NodeKind::Brick { occupancy, .. } => {
                             let corner = min + corner;
-                            let reach = self
-                                .brick_reach(frustum, corner, occupancy, best, near_first, grain);
+                            let reach =
+                                self.brick_reach(frustum, corner, occupancy, best, near_first);
                             best = best.min(reach);
                         }
                         NodeKind::Branch { children, first } if depth < DEPTH => {
@@ -161,8 +162,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// The nearest distance at which a ray of the frustum may reach one of
     /// a brick's solid voxels, if closer than `best` (else `best`): the
     /// voxels of each occupied 2x2x2 group that may itself meet the frustum
-    /// closer than `best` (the group whole, for a `grain` of 2 or more).
-    /// Groups and voxels go in the frustum's
+    /// closer than `best`. Groups and voxels go in the frustum's
     /// nearest-first octant order `near_first`, so that the first voxel
     /// found tends to be the nearest and the rest fail the distance test
     /// before the plane tests.
@@ -173,18 +173,12 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         occupancy: u64,
         mut best: f32,
         near_first: u32,
-        grain: u32,
     ) -> f32 {
         for group in 0..8 {
             let local = child_offset((group ^ near_first) as usize) * 2;
-            if occupancy & GROUP << brick_bit(local) == 0 {
-                continue;
-            }
-            let Some(distance) = self.reach(frustum, corner + local, 2, best) else {
-                continue;
-            };
-            if grain >= 2 {
-                best = distance;
+            if occupancy & GROUP << brick_bit(local) == 0
+                || self.reach(frustum, corner + local, 2, best).is_none()
+            {
                 continue;
             }
             for voxel in 0..8 {
