@@ -48,7 +48,7 @@ fn tiles<'a>(
             let (x1, y1) = ((tx + TILE).min(w), (ty + TILE).min(h));
             let t0 = camera
                 .tile_frustum(tx, ty, x1, y1)
-                .map_or(0.0, |f| scene.clear_distance(&f, 1));
+                .map_or(0.0, |f| scene.clear_distance(&f));
             ((tx, ty, x1, y1), t0)
         })
     })

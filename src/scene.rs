@@ -222,14 +222,10 @@ pub trait Scene {
     /// `frustum` hits a voxel: every such ray's hit, if any, has `t >=` the
     /// answer.
     /// What lets a tile of primary rays skip the empty space they share
-    /// ([`Reach::after`]). `grain` is the side, in voxels, of the smallest
-    /// box worth looking into: 1 for the distance to the nearest voxel a
-    /// ray may reach, more for an earlier answer that costs less (a
-    /// storage may count a box of at most that side whole). The default
-    /// knows nothing and answers 0.
+    /// ([`Reach::after`]). The default knows nothing and answers 0.
     #[inline]
-    fn clear_distance(&self, frustum: &Frustum, grain: u32) -> f32 {
-        let _ = (frustum, grain);
+    fn clear_distance(&self, frustum: &Frustum) -> f32 {
+        let _ = frustum;
         0.0
     }
 
@@ -316,8 +312,8 @@ macro_rules! forward_tracing {
         }
 
         #[inline]
-        fn clear_distance(&self, frustum: &$crate::frustum::Frustum, grain: u32) -> f32 {
-            $inner(self).clear_distance(frustum, grain)
+        fn clear_distance(&self, frustum: &$crate::frustum::Frustum) -> f32 {
+            $inner(self).clear_distance(frustum)
         }
 
         #[inline]

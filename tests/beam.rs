@@ -29,34 +29,25 @@ fn check_tile<S: VoxelSource>(
     let scene = OctreeScene::build(source, bounds).unwrap();
     let voxels = solids(source, bounds);
     let (x1, y1) = (tx + tile_w, ty + tile_h);
-    let frustum = camera.tile_frustum(tx, ty, x1, y1);
-    let mut finer = f32::INFINITY;
-    // Single voxels (lone rays' grain), bricks, and cubes of 64 (packets'):
-    // the coarser answers no later, and none is late.
-    for grain in [1, 4, 64] {
-        let t0 = frustum.map_or(0.0, |f| scene.clear_distance(&f, grain));
-        prop_assert!(t0 >= 0.0, "negative clear distance {t0}");
-        if grain > 1 {
-            prop_assert!(t0 <= finer, "grain {grain}: {t0} after {finer}");
-        }
-        finer = t0;
-        for y in ty..y1 {
-            for x in tx..x1 {
-                // The pixel's center, and the top-left corner of its area
-                // (where an anti-aliasing sample can fall).
-                for ray in [camera.get_ray(x, y), camera.get_ray_at(x as f32, y as f32)] {
-                    let expected = first_hit_among(&ray, voxels.iter().copied());
-                    if let Some(hit) = expected {
-                        prop_assert!(
-                            hit.t >= t0,
-                            "pixel ({x}, {y}) hits at {} before the clear distance {t0} (grain {grain})",
-                            hit.t
-                        );
-                    }
-                    let memory = &mut WalkMemory::new();
-                    let traced = scene.trace_with(&ray, Reach::after(t0), memory, None);
-                    prop_assert_eq!(as_ref_hit(traced.hit), expected, "pixel ({}, {})", x, y);
+    let t0 = camera
+        .tile_frustum(tx, ty, x1, y1)
+        .map_or(0.0, |f| scene.clear_distance(&f));
+    prop_assert!(t0 >= 0.0, "negative clear distance {t0}");
+    for y in ty..y1 {
+        for x in tx..x1 {
+            // The pixel's center, and the top-left corner of its area (where
+            // an anti-aliasing sample can fall).
+            for ray in [camera.get_ray(x, y), camera.get_ray_at(x as f32, y as f32)] {
+                let expected = first_hit_among(&ray, voxels.iter().copied());
+                if let Some(hit) = expected {
+                    prop_assert!(
+                        hit.t >= t0,
+                        "pixel ({x}, {y}) hits at {} before the clear distance {t0}",
+                        hit.t
+                    );
                 }
+                let traced = scene.trace_with(&ray, Reach::after(t0), &mut WalkMemory::new(), None);
+                prop_assert_eq!(as_ref_hit(traced.hit), expected, "pixel ({}, {})", x, y);
             }
         }
     }
@@ -202,7 +193,7 @@ proptest! {
             for tx in (400..560).step_by(16) {
                 let t0 = camera
                     .tile_frustum(tx, ty, tx + 16, ty + 16)
-                    .map_or(0.0, |f| scene.clear_distance(&f, 1));
+                    .map_or(0.0, |f| scene.clear_distance(&f));
                 for y in ty..ty + 16 {
                     for x in tx..tx + 16 {
                         let ray = camera.get_ray(x, y);
@@ -240,7 +231,7 @@ fn a_clear_frustum_skips_the_empty_space_before_the_surface() {
         20.0,
     )
     .unwrap();
-    let t0 = scene.clear_distance(&camera.tile_frustum(6, 6, 10, 10).unwrap(), 1);
+    let t0 = scene.clear_distance(&camera.tile_frustum(6, 6, 10, 10).unwrap());
     assert!((15.0..=20.0).contains(&t0), "clear distance {t0}");
 }
 
@@ -260,7 +251,7 @@ fn a_clear_frustum_toward_the_horizon_reaches_most_of_the_way_to_its_hits() {
     )
     .unwrap();
     let (x0, y0, x1, y1) = (28, 28, 36, 36);
-    let t0 = scene.clear_distance(&camera.tile_frustum(x0, y0, x1, y1).unwrap(), 1);
+    let t0 = scene.clear_distance(&camera.tile_frustum(x0, y0, x1, y1).unwrap());
     let nearest = (y0..y1)
         .flat_map(|y| (x0..x1).map(move |x| (x, y)))
         .filter_map(|(x, y)| scene.trace(&camera.get_ray(x, y)).map(|hit| hit.t))
@@ -291,7 +282,7 @@ fn a_clear_frustum_counts_a_bricks_solid_voxels_not_their_groups() {
         10.0,
     )
     .unwrap();
-    let t0 = scene.clear_distance(&camera.tile_frustum(0, 0, 16, 16).unwrap(), 1);
+    let t0 = scene.clear_distance(&camera.tile_frustum(0, 0, 16, 16).unwrap());
     let nearest = (0..16)
         .flat_map(|y| (0..16).map(move |x| (x, y)))
         .filter_map(|(x, y)| scene.trace(&camera.get_ray(x, y)).map(|hit| hit.t))

@@ -10,7 +10,8 @@ use std::collections::BTreeSet;
 use dot_vox::{Color, DotVoxData, Model, SceneNode, ShapeModel, Size, Voxel};
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
-    render, Camera, CameraSettings, DenseScene, OctreeScene, RenderOptions, VoxModel, VoxelSource,
+    render, Camera, CameraSettings, DenseScene, Framer, OctreeScene, Projection, RenderOptions,
+    VoxModel, VoxelSource,
 };
 
 fn palette() -> Vec<Color> {
@@ -371,5 +372,35 @@ fn row_ends_are_the_ends_of_every_row_of_voxels() {
         let found: BTreeSet<(i32, i32, i32)> = ends.iter().map(|&p| p.into()).collect();
         assert_eq!(found, expected);
         assert_eq!(ends.len(), found.len(), "an end listed twice");
+        // A camera framed on the row ends is the camera framed on every
+        // voxel, bit for bit, from any side and either projection.
+        for (toward, projection) in [
+            (Vec3::new(1.0, 0.5, 2.0), Projection::Perspective),
+            (Vec3::new(-3.0, 1.0, -0.5), Projection::Perspective),
+            (
+                Vec3::new(0.2, -1.0, 0.7),
+                Projection::Orthographic { height: 1.0 },
+            ),
+        ] {
+            let base = CameraSettings {
+                width: 320,
+                height: 200,
+                projection,
+                ..CameraSettings::default()
+            };
+            let framed = |voxels: &mut dyn Iterator<Item = IVec3>| {
+                let mut framer = Framer::new(base, toward, 0.9).unwrap();
+                for p in voxels {
+                    framer.add_box(p.as_vec3(), p.as_vec3() + 1.0);
+                }
+                framer.settings().map(|s| {
+                    let camera = [s.lookfrom, s.lookat].map(|v| v.to_array().map(f32::to_bits));
+                    (camera, format!("{:?}", s.projection))
+                })
+            };
+            let from_ends = framed(&mut ends.iter().copied());
+            assert!(from_ends.is_some());
+            assert_eq!(from_ends, framed(&mut model.positions()));
+        }
     }
 }

@@ -32,7 +32,7 @@ pub struct Framer {
     /// the four perspective side planes (right, left, top, bottom), then
     /// `+-right`, `+-up`, `-+forward`; in lanes, twelve of them (the last
     /// two repeat the first two).
-    functionals: Lanes,
+    functionals: Functionals,
     /// Their maxima over the boxes, lane by lane.
     max: [Vec4; 3],
 }
@@ -42,20 +42,20 @@ pub struct Framer {
 /// function is largest over a box: its corner that is largest along those
 /// axes).
 #[derive(Clone, Copy, Debug)]
-struct Lanes {
+struct Functionals {
     components: [[Vec4; 3]; 3],
     rising: [[BVec4A; 3]; 3],
 }
 
-impl Lanes {
-    fn of(vectors: [Vec3; 10]) -> Lanes {
+impl Functionals {
+    fn of(vectors: [Vec3; 10]) -> Functionals {
         let lane = |i: usize| vectors[if i < 10 { i } else { i - 10 }];
         let component = |axis: usize| {
             [0, 1, 2].map(|quad| Vec4::from_array([0, 1, 2, 3].map(|k| lane(4 * quad + k)[axis])))
         };
         let components = [component(0), component(1), component(2)];
         let rising = components.map(|quads| quads.map(|c| c.cmpge(Vec4::ZERO)));
-        Lanes { components, rising }
+        Functionals { components, rising }
     }
 }
 
@@ -89,16 +89,17 @@ impl Framer {
         let (right, up) = basis(forward, base.cam_up, base.up_fallback)?;
         let aspect = base.width as f32 / base.height as f32;
         let tan_v = tan32(base.vertical_fov.to_radians() / 2.0) * fill;
+        let tan_h = tan_v * aspect;
         Ok(Framer {
             base,
             right,
             up,
             forward,
-            tan_h: tan_v * aspect,
+            tan_h,
             tan_v,
             aspect,
             fill,
-            functionals: Lanes::of(functionals(right, up, forward, tan_v * aspect, tan_v)),
+            functionals: Functionals::of(functionals(right, up, forward, tan_h, tan_v)),
             max: [Vec4::NEG_INFINITY; 3],
         })
     }
@@ -108,7 +109,7 @@ impl Framer {
     /// along its rising axes, in `Vec3::dot`'s order, four at a time.
     #[inline]
     pub fn add_box(&mut self, min: Vec3, max: Vec3) {
-        let Lanes {
+        let Functionals {
             components: [x, y, z],
             rising,
         } = &self.functionals;
@@ -123,7 +124,8 @@ impl Framer {
             let dot =
                 corner(0, quad) * x[quad] + corner(1, quad) * y[quad] + corner(2, quad) * z[quad];
             // (Not `Vec4::max`, whose answer for NaN differs by target: a
-            // NaN corner leaves the maximum as it was.)
+            // NaN corner leaves the maximum as it was, and of equal
+            // values, -0 and +0, the first stays, on every target.)
             *m = Vec4::select(dot.cmpgt(*m), dot, *m);
         }
     }

@@ -19,15 +19,6 @@ use crate::scene::{Hit, Scene, WalkMemory, PACKET};
 /// ms (96 ms), 64 wide 115 ms (86 ms), 128 and 256 the same as 64.
 pub(super) const PACKET_TILE: u32 = 64;
 
-/// The grain of a packet tile's clear distance ([`Scene::clear_distance`]):
-/// cubes of 64 count whole, as the packet walk crosses their empty cells
-/// about as fast as the beam would. Measured at 1920x1080, `--flat`, one
-/// thread, on an AMD EPYC VM, medians of 7 to 9 interleaved: single
-/// voxels 88.0 ms at size 250, bricks (4) 84.5 ms, 8 the same as bricks;
-/// 64 against 4: 84.4 against 85.2 ms at 250, 463 against 471 at 2048;
-/// 256 no better than 64.
-pub(super) const PACKET_GRAIN: u32 = 64;
-
 /// The widest a packet of rays may be, in voxels, where its walk begins:
 /// beyond, rays that diverge go alone. Measured at 1920x1080, `--flat`,
 /// one thread, on an AMD EPYC VM: packets everywhere took 537 ms at size
@@ -37,7 +28,8 @@ const MAX_SPREAD: f32 = 16.0;
 
 /// Whether a tile's rays, clear until `t_start`, are coherent enough for
 /// packets: an 8x4 block's rays are at most [`MAX_SPREAD`] voxels apart
-/// there, or clear forever (a tile of sky, whose rays packets only make).
+/// there, or clear forever (a tile of sky: its rays are made in blocks,
+/// and none is traced).
 /// Never for an orthographic camera, whose rays share no origin.
 pub(super) fn packets_pay(camera: &Camera, t_start: f32) -> bool {
     let spread = t_start * camera.pixel_spread() * BLOCK_WIDTH as f32;
@@ -46,9 +38,10 @@ pub(super) fn packets_pay(camera: &Camera, t_start: f32) -> bool {
 
 /// The pixels of `tile` (of `rect`; the tile's corner and size are
 /// offsets inside `rect`) for a [`Kernel::one_ray`] kernel: its whole 8x4
-/// blocks traced as packets, the lanes a packet leaves and the pixels of
-/// partial blocks one ray at a time, each shaded by the kernel, handed to
-/// `put(dx, dy, rgba)` at their offsets inside `rect`.
+/// blocks traced as packets (or, clear forever, all misses), the lanes a
+/// packet leaves and the pixels of partial blocks one ray at a time, each
+/// shaded by the kernel, handed to `put(dx, dy, rgba)` at their offsets
+/// inside `rect`.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
     kernel: &K,

@@ -12,7 +12,7 @@
 
 use crate::render::camera::Camera;
 #[cfg(feature = "packets")]
-use crate::render::packets::{in_packets, packets_pay, PACKET_GRAIN, PACKET_TILE};
+use crate::render::packets::{in_packets, packets_pay, PACKET_TILE};
 #[cfg(feature = "path")]
 use crate::render::rounds::PixelSamples;
 use crate::render::shader::Kernel;
@@ -28,17 +28,15 @@ use crate::scene::{Scene, WalkMemory};
 /// ms against 36 ms on one thread); 32 left 4.7 moves.
 pub(crate) const TILE: u32 = 16;
 
-/// The width of the tiles of `kernel`'s pixels and the grain of their
-/// clear distances ([`Scene::clear_distance`]): [`TILE`] and single
-/// voxels, or wider tiles and coarser grain for a kernel whose rays go in
-/// packets.
-fn tiling(kernel: &impl Kernel) -> (u32, u32) {
+/// The width of the tiles of `kernel`'s pixels: [`TILE`], or wider for a
+/// kernel whose rays go in packets.
+fn tile_width(kernel: &impl Kernel) -> u32 {
     #[cfg(feature = "packets")]
     if kernel.one_ray() {
-        return (PACKET_TILE, PACKET_GRAIN);
+        return PACKET_TILE;
     }
     let _ = kernel;
-    (TILE, 1)
+    TILE
 }
 
 /// Renders every pixel of `rect` with `kernel`, tile by tile (row-major
@@ -60,7 +58,7 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
     // rectangle that reaches the last pixel of the largest frame.
     for dy0 in (0..rect.height).step_by(TILE as usize) {
         let dy1 = dy0 + TILE.min(rect.height - dy0);
-        let (width, grain) = tiling(kernel);
+        let width = tile_width(kernel);
         for dx0 in (0..rect.width).step_by(width as usize) {
             let dx1 = dx0 + width.min(rect.width - dx0);
             let (x0, y0) = (rect.x.wrapping_add(dx0), rect.y.wrapping_add(dy0));
@@ -68,7 +66,7 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
             // (A tile past u32::MAX, outside every frame, wraps: no beam.)
             let beam = kernel.uses_beam() && x1 > x0 && y1 > y0;
             let frustum = beam.then(|| camera.tile_frustum(x0, y0, x1, y1)).flatten();
-            let t_start = frustum.map_or(0.0, |f| scene.clear_distance(&f, grain));
+            let t_start = frustum.map_or(0.0, |f| scene.clear_distance(&f));
             let tile = Tile { dx0, dy0, dx1, dy1 };
             #[cfg(feature = "packets")]
             let offsets = Rect {
@@ -192,5 +190,5 @@ fn clear_distance<K: Kernel, S: Scene + ?Sized>(
     // (A tile past u32::MAX, outside every frame, wraps: no beam.)
     let beam = kernel.uses_beam() && x1 > x0 && y1 > y0;
     let frustum = beam.then(|| camera.tile_frustum(x0, y0, x1, y1)).flatten();
-    frustum.map_or(0.0, |f| scene.clear_distance(&f, 1))
+    frustum.map_or(0.0, |f| scene.clear_distance(&f))
 }

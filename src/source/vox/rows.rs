@@ -35,7 +35,7 @@ impl VoxModel {
                 if solid != 0 {
                     let x0 = key.x << CHUNK_LOG;
                     span[0] = span[0].min(x0 + (solid.trailing_zeros() / 8) as i32);
-                    span[1] = span[1].max(x0 + 7 - (solid.leading_zeros() / 8) as i32);
+                    span[1] = span[1].max(x0 + (CHUNK - 1) - (solid.leading_zeros() / 8) as i32);
                 }
             }
         }
@@ -63,4 +63,25 @@ fn solid_bytes(row: u64) -> u64 {
     // (b & 0x7f) + 0x7f carries into the high bit unless the low seven
     // bits are 0; or-ing `b` adds the high bit itself.
     (((row & LOW7) + LOW7) | row) & !LOW7
+}
+
+#[cfg(test)]
+mod tests {
+    use super::solid_bytes;
+
+    #[test]
+    fn solid_bytes_marks_exactly_the_non_zero_bytes() {
+        for byte in [0x00u8, 0x01, 0x7f, 0x80, 0x81, 0xfe, 0xff] {
+            for at in 0..8 {
+                for rest in [0x00u8, 0x01, 0x80, 0xff] {
+                    let mut row = [rest; 8];
+                    row[at] = byte;
+                    let expected = row.iter().enumerate().fold(0u64, |bits, (i, &b)| {
+                        bits | u64::from(b != 0) << (8 * i + 7)
+                    });
+                    assert_eq!(solid_bytes(u64::from_le_bytes(row)), expected, "{row:?}");
+                }
+            }
+        }
+    }
 }

@@ -49,12 +49,9 @@ const MARGIN: f32 = 1.0 - 1e-5;
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// A distance before which no ray inside `frustum` hits a voxel (0 when
     /// the apex touches a solid voxel, `+inf` when the frustum meets
-    /// none), looking no deeper than the nodes of side at most `grain`
-    /// (such a node counts whole: the answer is earlier, and cheaper; a
-    /// grain below a brick's side looks at single voxels). Allocates
-    /// nothing; visits nodes nearest first and skips every box no closer
-    /// than the best found.
-    pub(crate) fn beam_distance(&self, frustum: &Frustum, grain: u32) -> f32 {
+    /// none). Allocates nothing; visits nodes nearest first and skips every
+    /// box no closer than the best found.
+    pub(crate) fn beam_distance(&self, frustum: &Frustum) -> f32 {
         if self.occupied.is_empty() {
             return f32::INFINITY;
         }
@@ -109,8 +106,6 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             if let Some((node, corner, log)) = visit.take() {
                 if let Some(distance) = self.reach(frustum, min + corner, 1 << log, best) {
                     match node.kind() {
-                        // (Every node holds a solid voxel.)
-                        _ if 1u32 << log <= grain => best = distance,
                         NodeKind::Solid(_) => best = distance,
                         NodeKind::Brick { occupancy, .. } => {
                             let corner = min + corner;

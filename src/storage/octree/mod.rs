@@ -164,8 +164,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
         }
     }
 
-    fn clear_distance(&self, frustum: &Frustum, grain: u32) -> f32 {
-        self.beam_distance(frustum, grain)
+    fn clear_distance(&self, frustum: &Frustum) -> f32 {
+        self.beam_distance(frustum)
     }
 
     #[cfg(feature = "packets")]
