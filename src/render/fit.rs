@@ -234,3 +234,50 @@ fn functionals(right: Vec3, up: Vec3, forward: Vec3, tan_h: f32, tan_v: f32) -> 
         f,
     ]
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+    use proptest::prelude::*;
+
+    use super::{functionals, Framer};
+    use crate::render::camera::CameraSettings;
+
+    fn vec3(range: core::ops::Range<f32>) -> impl Strategy<Value = Vec3> {
+        prop::array::uniform3(range).prop_map(Vec3::from)
+    }
+
+    proptest! {
+        /// The maxima kept four lanes at a time are, bit for bit, each
+        /// functional's largest dot product with a box's largest corner
+        /// along its rising axes (`Vec3::dot`, one functional at a time).
+        #[test]
+        fn maxima_are_the_scalar_dot_products(
+            toward in vec3(-5.0..5.0),
+            fov in 1.0f32..170.0,
+            size in (1u32..4000, 1u32..4000),
+            boxes in prop::collection::vec((vec3(-1e4..1e4), vec3(0.0..300.0)), 1..40),
+        ) {
+            let base = CameraSettings {
+                width: size.0,
+                height: size.1,
+                vertical_fov: fov,
+                ..CameraSettings::default()
+            };
+            let Ok(mut framer) = Framer::new(base, toward, 0.9) else {
+                return Ok(());
+            };
+            let vectors = functionals(framer.right, framer.up, framer.forward, framer.tan_h, framer.tan_v);
+            let mut expected = [f32::NEG_INFINITY; 10];
+            for &(min, extent) in &boxes {
+                let max = min + extent;
+                framer.add_box(min, max);
+                for (m, a) in expected.iter_mut().zip(vectors) {
+                    let corner = Vec3::select(a.cmpge(Vec3::ZERO), max, min);
+                    *m = m.max(corner.dot(a));
+                }
+            }
+            prop_assert_eq!(framer.maxima().map(f32::to_bits), expected.map(f32::to_bits));
+        }
+    }
+}
