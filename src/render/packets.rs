@@ -54,17 +54,19 @@ pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
     put: &mut impl FnMut(u32, u32, u32),
     stats: &mut RayStats,
 ) {
-    // A pixel whose hit the packet found is shaded; any other is the
-    // kernel's own pixel (its ray walking alone).
-    let mut one = |dx: u32, dy: u32, traced: Option<(&Ray, Option<Hit>)>, memory: &mut _| {
-        let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
-        let (rgba, rays) = match traced {
-            Some((ray, hit)) => kernel.shade(scene, ray, hit, (x, y), memory),
-            None => kernel.pixel(scene, x, y, t_start, memory),
+    // A pixel whose hit the packet found is shaded; one the packet left
+    // walks its ray alone; one of a partial block is the kernel's own.
+    let mut one =
+        |dx: u32, dy: u32, ray: Option<&Ray>, hit: Option<Option<Hit>>, memory: &mut _| {
+            let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
+            let (rgba, rays) = match (ray, hit) {
+                (Some(ray), Some(hit)) => kernel.shade(scene, ray, hit, (x, y), memory),
+                (Some(ray), None) => kernel.ray_pixel(scene, ray, (x, y), t_start, memory),
+                (None, _) => kernel.pixel(scene, x, y, t_start, memory),
+            };
+            put(dx, dy, rgba);
+            *stats += rays;
         };
-        put(dx, dy, rgba);
-        *stats += rays;
-    };
     // Offsets, which stay below the rectangle's size: no sum overflows.
     let (dx1, dy1) = (tile.x + tile.width, tile.y + tile.height);
     for by in (tile.y..dy1).step_by(BLOCK_HEIGHT as usize) {
@@ -73,7 +75,7 @@ pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
             if (width, height) != (BLOCK_WIDTH, BLOCK_HEIGHT) {
                 for dy in by..by + height {
                     for dx in bx..bx + width {
-                        one(dx, dy, None, memory);
+                        one(dx, dy, None, None, memory);
                     }
                 }
                 continue;
@@ -87,9 +89,9 @@ pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
                 scene.trace_packet(&rays, t_start, &mut hits)
             };
             for (i, ray) in rays.iter().enumerate() {
-                let traced = (answered >> i & 1 != 0).then_some((ray, hits[i]));
+                let hit = (answered >> i & 1 != 0).then_some(hits[i]);
                 let (dx, dy) = (bx + i as u32 % BLOCK_WIDTH, by + i as u32 / BLOCK_WIDTH);
-                one(dx, dy, traced, memory);
+                one(dx, dy, Some(ray), hit, memory);
             }
         }
     }

@@ -172,10 +172,7 @@ impl Kernel for Flat<'_, '_, '_> {
         memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats) {
         let ray = self.0.camera.get_ray(x, y);
-        let hit = scene
-            .trace_with(&ray, Reach::after(t_start), memory, None)
-            .hit;
-        self.shade(scene, &ray, hit, (x, y), memory)
+        self.ray_pixel(scene, &ray, (x, y), t_start, memory)
     }
 
     fn one_ray(&self) -> bool {
@@ -264,10 +261,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         let camera = self.0.camera;
         if self.one_ray() {
             let ray = camera.get_ray(x, y);
-            let hit = scene
-                .trace_with(&ray, Reach::after(t_start), memory, None)
-                .hit;
-            return self.shade(scene, &ray, hit, (x, y), memory);
+            return self.ray_pixel(scene, &ray, (x, y), t_start, memory);
         }
         let samples = u32::from(self.0.options.samples);
         let transparent = self.0.options.background == Background::Transparent;

@@ -38,7 +38,7 @@ use crate::render::plan::{EffectPlan, Look};
 use crate::render::rounds::PixelSamples;
 use crate::render::shade::{face_weights, pack};
 use crate::render::stats::RayStats;
-use crate::scene::{Hit, Scene, WalkMemory};
+use crate::scene::{Hit, Reach, Scene, WalkMemory};
 
 mod kernels;
 #[cfg(all(test, feature = "alloc"))]
@@ -158,6 +158,25 @@ pub(crate) trait Kernel: Sync {
     /// in packets ([`Scene::trace_packet`]).
     fn one_ray(&self) -> bool {
         false
+    }
+
+    /// Pixel `(x, y)` of a [`Kernel::one_ray`] kernel from its primary
+    /// ray `ray` (the camera's `get_ray(x, y)`, however computed): the ray
+    /// walked alone from `t_start`, its hit shaded. The same pixel and
+    /// rays as [`Kernel::pixel`], which is this of `get_ray(x, y)`.
+    #[inline]
+    fn ray_pixel<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        ray: &Ray,
+        (x, y): (u32, u32),
+        t_start: f32,
+        memory: &mut WalkMemory<'s>,
+    ) -> (u32, RayStats) {
+        let hit = scene
+            .trace_with(ray, Reach::after(t_start), memory, None)
+            .hit;
+        self.shade(scene, ray, hit, (x, y), memory)
     }
 
     /// Pixel `(x, y)` of a kernel whose pixels are [`Kernel::one_ray`],
