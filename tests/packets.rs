@@ -1,8 +1,8 @@
 //! Packets of rays (`Scene::trace_packet`) give every lane they answer the
 //! hit the one-ray walk gives it, bit for bit: on random scenes, for
 //! packets of camera pixels, of diverging and axis-parallel directions,
-//! from origins on planes and corners, with clear distances up to the
-//! nearest hit.
+//! from origins on planes and corners, outside the volume and in its
+//! empty space, with clear distances up to the nearest hit.
 #![cfg(feature = "packets")]
 
 mod common;
@@ -174,6 +174,66 @@ fn camera_blocks_over_the_terrain_are_the_one_ray_walks_hits() {
     }
     assert!(
         answered * 10 >= lanes * 9,
+        "{answered} of {lanes} lanes answered"
+    );
+}
+
+/// Camera blocks from inside the occupied box, in its empty space: a
+/// camera just above the ground, looking along it. Packets are taken
+/// there too (their origin touches no solid voxel), and most lanes are
+/// answered.
+#[test]
+fn camera_blocks_from_the_empty_space_inside_the_terrain_are_the_one_ray_walks_hits() {
+    let bounds = IAabb::centered(64);
+    let scene = OctreeScene::build(&VoxelGenerator::new(1), bounds).unwrap();
+    // The highest solid voxel of a column, if any.
+    let top = |x: i32, z: i32| {
+        (-64..64)
+            .rev()
+            .find(|&y| scene.material(IVec3::new(x, y, z)) != 0)
+    };
+    let highest = (-64..64)
+        .flat_map(|x| (-64..64).map(move |z| (x, z)))
+        .filter_map(|(x, z)| top(x, z))
+        .max()
+        .unwrap();
+    let (mut lanes, mut answered, mut cameras) = (0, 0, 0);
+    // Columns whose ground lies below the highest voxel: a camera just
+    // above it is inside the occupied box.
+    let low_columns = (-60..60)
+        .step_by(9)
+        .flat_map(|x| (-60..60).step_by(13).map(move |z| (x, z)))
+        .filter_map(|(x, z)| Some((x, z, top(x, z)?)))
+        .filter(|&(_, _, ground)| ground + 2 <= highest)
+        .step_by(7)
+        .take(5);
+    for (x, z, ground) in low_columns {
+        cameras += 1;
+        let lookfrom = Vec3::new(x as f32 + 0.5, ground as f32 + 1.5, z as f32 + 0.5);
+        for lookat in [
+            Vec3::new(0.0, ground as f32 - 4.0, 0.0),
+            lookfrom + Vec3::new(7.0, -1.0, -3.0),
+        ] {
+            let Ok(camera) = Camera::new(CameraSettings {
+                width: 64,
+                height: 48,
+                lookfrom,
+                lookat,
+                ..CameraSettings::default()
+            }) else {
+                continue;
+            };
+            for y in (0..48).step_by(PACKET / WIDTH as usize) {
+                for x in (0..64).step_by(WIDTH as usize) {
+                    answered += check(&scene, &camera_block(&camera, x, y)).unwrap();
+                    lanes += 2 * PACKET as u32;
+                }
+            }
+        }
+    }
+    assert!(cameras >= 3, "{cameras} cameras inside the occupied box");
+    assert!(
+        answered * 10 >= lanes * 8,
         "{answered} of {lanes} lanes answered"
     );
 }

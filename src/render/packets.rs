@@ -83,8 +83,13 @@ pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
             let rays = camera.block_rays(rect.x.wrapping_add(bx), rect.y.wrapping_add(by));
             let mut hits = [None; PACKET];
             // Clear forever: every ray misses (the promise of `t_start`).
+            // Clear for no distance: the camera touches a solid voxel,
+            // where a packet's lanes would mostly go back undecided; they
+            // walk alone.
             let answered = if t_start == f32::INFINITY {
                 u32::MAX
+            } else if t_start == 0.0 {
+                0
             } else {
                 scene.trace_packet(&rays, t_start, &mut hits)
             };

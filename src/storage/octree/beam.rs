@@ -57,30 +57,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         }
         // A camera touching a solid voxel (inside it, or on its surface):
         // the answer is 0, which the walk below would also reach, but only
-        // after descending to that voxel for every tile. Up to eight cells
-        // touch the apex: on an axis where it lies on a plane, the cells on
-        // both sides.
-        let cell = IVec3::new(
-            floor_cell(frustum.apex.x),
-            floor_cell(frustum.apex.y),
-            floor_cell(frustum.apex.z),
-        );
-        let on_plane = cell.as_vec3().cmpeq(frustum.apex);
-        let below = IVec3::select(on_plane, IVec3::ONE, IVec3::ZERO);
-        for corner in 0..8 {
-            let pick = child_offset(corner);
-            if (pick & !below) != IVec3::ZERO {
-                continue;
-            }
-            // (Saturating: a saturated coordinate lies outside every volume.)
-            let touching = IVec3::new(
-                cell.x.saturating_sub(pick.x),
-                cell.y.saturating_sub(pick.y),
-                cell.z.saturating_sub(pick.z),
-            );
-            if self.material(touching) != 0 {
-                return 0.0;
-            }
+        // after descending to that voxel for every tile.
+        if self.touches_solid(frustum.apex) {
+            return 0.0;
         }
         let nodes = self.nodes.as_ref();
         let min = self.bounds.min;
@@ -152,6 +131,29 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             visit = Some((child, level.corner + offset, child_log));
         }
         best * MARGIN
+    }
+
+    /// Whether a solid voxel touches `point` (holds it, or has it on its
+    /// surface). Up to eight cells touch a point: on an axis where it lies
+    /// on a plane, the cells on both sides.
+    pub(super) fn touches_solid(&self, point: Vec3) -> bool {
+        let cell = IVec3::new(
+            floor_cell(point.x),
+            floor_cell(point.y),
+            floor_cell(point.z),
+        );
+        let on_plane = cell.as_vec3().cmpeq(point);
+        let below = IVec3::select(on_plane, IVec3::ONE, IVec3::ZERO);
+        (0..8).any(|corner| {
+            let pick = child_offset(corner);
+            // (Saturating: a saturated coordinate lies outside every volume.)
+            let touching = IVec3::new(
+                cell.x.saturating_sub(pick.x),
+                cell.y.saturating_sub(pick.y),
+                cell.z.saturating_sub(pick.z),
+            );
+            (pick & !below) == IVec3::ZERO && self.material(touching) != 0
+        })
     }
 
     /// The nearest distance at which a ray of the frustum may reach one of

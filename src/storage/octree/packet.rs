@@ -22,10 +22,10 @@
 //! and visits it exactly when the first comes before the second. A
 //! voxel whose latest near crossing is strictly before its earliest far
 //! one is visited; one where they are equal is decided here by no rule:
-//! its lane goes back to the caller, who walks it alone. Only packets
-//! whose origin lies outside the occupied box are taken, so every solid
-//! voxel lies strictly ahead on one axis and its entry crossing is
-//! positive: the walk's start keys (at or before 0) never decide it. A
+//! its lane goes back to the caller, who walks it alone, and so does one
+//! whose entry is not ahead of the origin (a solid voxel holding the
+//! origin, or with it on a face the ray leaves by): the walk's start keys,
+//! at or before 0, never decide a hit here. A
 //! box is entered by a lane whenever any of its cells is (its near
 //! crossings are no later, its far ones no earlier), so no lane skips the
 //! box of its hit; and since a ray's cells grow on every axis in flipped
@@ -57,17 +57,14 @@ struct Found<'h> {
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// [`crate::Scene::trace_packet`] for the octree: the lanes from the
     /// packet's first ray's origin whose direction moves along every axis
-    /// with its signs, when that origin lies outside the occupied box.
+    /// with its signs.
     pub(super) fn packet(
         &self,
         rays: &[Ray; PACKET],
         clear: f32,
         hits: &mut [Option<Hit>; PACKET],
     ) -> u32 {
-        let (lo, hi) = (self.occupied.min.as_vec3(), self.occupied.max.as_vec3());
-        let origin = rays[0].origin();
-        let outside = (origin.cmplt(lo) | origin.cmpgt(hi)).any();
-        if self.occupied.is_empty() || !outside || clear.is_nan() || clear == f32::INFINITY {
+        if self.occupied.is_empty() || clear.is_nan() || clear == f32::INFINITY {
             return 0;
         }
         let (packet, taken) = Packet::of(rays, clear);
