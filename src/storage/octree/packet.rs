@@ -22,15 +22,16 @@
 //! and visits it exactly when the first comes before the second. A
 //! voxel whose latest near crossing is strictly before its earliest far
 //! one is visited; one where they are equal is decided here by no rule:
-//! its lane goes back to the caller, who walks it alone, and so does one
-//! whose entry is not ahead of the origin (a solid voxel holding the
-//! origin, or with it on a face the ray leaves by): the walk's start keys,
-//! at or before 0, never decide a hit here. A
-//! box is entered by a lane whenever any of its cells is (its near
-//! crossings are no later, its far ones no earlier), so no lane skips the
-//! box of its hit; and since a ray's cells grow on every axis in flipped
-//! coordinates, the octant order meets them in the walk's order: the
-//! first solid voxel a lane finds is its hit.
+//! its lane goes back to the caller, who walks it alone. So does a lane
+//! whose solid voxel it enters at or before 0 (the voxel holds the
+//! origin, or has it on the face the ray enters by): the walk's start
+//! keys never decide a hit here. A voxel the ray has left by 0 is never
+//! entered (its far crossing is not after the floor), so the origin may
+//! lie anywhere. A box is entered by a lane whenever any of its cells is
+//! (its near crossings are no later, its far ones no earlier), so no lane
+//! skips the box of its hit; and since a ray's cells grow on every axis
+//! in flipped coordinates, the octant order meets them in the walk's
+//! order: the first solid voxel a lane finds is its hit.
 
 use glam::Vec3A;
 
