@@ -11,7 +11,7 @@ use dot_vox::{Color, DotVoxData, Model, SceneNode, ShapeModel, Size, Voxel};
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
     render, Camera, CameraSettings, DenseScene, Framer, OctreeScene, Projection, RenderOptions,
-    VoxModel, VoxelSource,
+    SplitMix64, VoxModel, VoxelSource,
 };
 
 fn palette() -> Vec<Color> {
@@ -302,13 +302,8 @@ fn boxes_read_from_chunks_equal_voxel_by_voxel_reads() {
     let model = VoxModel::from_bytes(&bytes(&data)).unwrap();
     assert_eq!(model.voxel_count(), 27);
     assert!(model.bounds().size().max_element() > 3_000_000);
-    let mut state = 7u64;
-    let mut next = |n: i32| {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (state >> 33) as i32 % n
-    };
+    let mut rng = SplitMix64::new(7);
+    let mut next = |n: i32| rng.below(n as u32) as i32;
     for _ in 0..400 {
         let min = IVec3::new(next(24) - 12, next(24) - 12, next(24) - 12);
         let size = IVec3::new(1 + next(20), 1 + next(20), 1 + next(20));
@@ -328,13 +323,8 @@ fn boxes_read_from_chunks_equal_voxel_by_voxel_reads() {
 
 #[test]
 fn row_ends_are_the_ends_of_every_row_of_voxels() {
-    let mut state = 11u64;
-    let mut next = |n: u32| {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (state >> 33) as u32 % n
-    };
+    let mut rng = SplitMix64::new(11);
+    let mut next = |n: u32| rng.below(n);
     for _ in 0..20 {
         // A random cloud, placed twice (rows then cross chunks and
         // negative coordinates).
