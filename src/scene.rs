@@ -229,22 +229,25 @@ pub trait Scene {
         0.0
     }
 
-    /// The hits of a packet of rays from one camera, each traced over
-    /// [`Reach::after`]`(clear)`: for every lane `i` whose bit is set in
-    /// the answer, `hits[i]` is exactly the hit [`Scene::trace_with`]
-    /// gives `rays[i]` over that reach, bit for bit, provided no ray hits
-    /// anything before `clear` (the promise of [`Reach::after`]). Lanes
-    /// left unset (their `hits` untouched) are the caller's to trace one
-    /// by one. What lets a storage walk coherent rays together; the
-    /// default answers no lane.
+    /// The hits of the rays of a packet whose bits are set in `lanes`
+    /// (a camera's neighbouring pixels, or shadow rays from neighbouring
+    /// hits), each traced over [`Reach::after`]`(clear)`: for every lane
+    /// `i` whose bit is set in the answer (only lanes of `lanes`),
+    /// `hits[i]` is exactly the hit [`Scene::trace_with`] gives `rays[i]`
+    /// over that reach, bit for bit, provided no ray hits anything before
+    /// `clear` (the promise of [`Reach::after`]). Lanes left unset (their
+    /// `hits` untouched) are the caller's to trace one by one. What lets
+    /// a storage walk coherent rays together; the default answers no
+    /// lane.
     #[inline]
     fn trace_packet(
         &self,
         rays: &[Ray; PACKET],
+        lanes: u32,
         clear: f32,
         hits: &mut [Option<Hit>; PACKET],
     ) -> u32 {
-        let _ = (rays, clear, hits);
+        let _ = (rays, lanes, clear, hits);
         0
     }
 
@@ -320,10 +323,11 @@ macro_rules! forward_tracing {
         fn trace_packet(
             &self,
             rays: &[$crate::geom::Ray; $crate::scene::PACKET],
+            lanes: u32,
             clear: f32,
             hits: &mut [Option<$crate::scene::Hit>; $crate::scene::PACKET],
         ) -> u32 {
-            $inner(self).trace_packet(rays, clear, hits)
+            $inner(self).trace_packet(rays, lanes, clear, hits)
         }
 
         fn storage_bytes(&self) -> usize {

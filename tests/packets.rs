@@ -26,6 +26,11 @@ fn one_by_one(scene: &impl Scene, ray: &Ray, clear: f32) -> Option<Hit> {
 /// distance 0 and at the nearest hit of the packet (a promise the caller
 /// keeps); returns how many lanes were answered.
 fn check(scene: &impl Scene, rays: &[Ray; PACKET]) -> Result<u32, TestCaseError> {
+    check_lanes(scene, rays, u32::MAX)
+}
+
+/// [`check`] of the lanes of `lanes` only: no other lane is answered.
+fn check_lanes(scene: &impl Scene, rays: &[Ray; PACKET], lanes: u32) -> Result<u32, TestCaseError> {
     let alone: Vec<Option<Hit>> = rays.iter().map(|r| one_by_one(scene, r, 0.0)).collect();
     let nearest = alone
         .iter()
@@ -35,9 +40,10 @@ fn check(scene: &impl Scene, rays: &[Ray; PACKET]) -> Result<u32, TestCaseError>
     let mut answered = 0;
     for clear in [0.0, nearest.min(1e30)] {
         let mut hits = [None; PACKET];
-        let lanes = scene.trace_packet(rays, clear, &mut hits);
+        let answered_lanes = scene.trace_packet(rays, lanes, clear, &mut hits);
+        prop_assert_eq!(answered_lanes & !lanes, 0, "lanes not asked for answered");
         for i in 0..PACKET {
-            if lanes >> i & 1 != 0 {
+            if answered_lanes >> i & 1 != 0 {
                 // Equal, and `t` bit for bit (`==` takes -0 for 0).
                 let t_bits = |h: &Option<Hit>| h.map(|h| h.t.to_bits());
                 prop_assert!(
@@ -95,7 +101,10 @@ proptest! {
     /// zero) and aimed directions from one origin, on and off the grid,
     /// inside and outside the volume; lanes from other origins and with
     /// components too small to walk; volumes near the origin and millions
-    /// of voxels away.
+    /// of voxels away. Parallel packets from scattered origins (shadow
+    /// rays: on half-integer points, just off a voxel's plane, anywhere),
+    /// and packets whose every lane has its own origin and direction,
+    /// some lanes left out.
     #[test]
     fn packet_lanes_are_the_one_ray_walks_hits(
         seed in any::<u64>(),
@@ -103,7 +112,7 @@ proptest! {
         size in (1i32..40, 1i32..40, 1i32..40),
         min in (-20i32..20, -20i32..20, -20i32..20),
         far in any::<bool>(),
-        kind in 0u32..6,
+        kind in 0u32..8,
     ) {
         let size = IVec3::new(size.0, size.1, size.2);
         let min = IVec3::new(min.0, min.1, min.2) + if far { IVec3::new(3_000_000, -2_500_000, 1_000_000) } else { IVec3::ZERO };
@@ -133,14 +142,38 @@ proptest! {
                 5 if i % 3 == 1 => (origin, Vec3::new(aim.x, 1e-12, aim.z)),
                 _ => (origin, cone(&mut rng)),
             });
+            // Parallel lanes from scattered origins, or every lane its
+            // own origin and direction (the signs shared, so most are
+            // taken).
+            let signs = random_dir(&mut rng).signum();
+            let shared = if rng.below(3) == 0 { special_dir(&mut rng) } else { random_dir(&mut rng) };
+            let rays = match kind {
+                6 | 7 => packet_from(|_| {
+                    let mut at = point_in(&mut rng, lo - size.as_vec3(), hi + size.as_vec3());
+                    match rng.below(3) {
+                        0 => at = (at * 2.0).round() * 0.5,
+                        1 => {
+                            let axis = rng.below(3) as usize;
+                            let side = if rng.below(2) == 0 { 1.0 } else { -1.0 };
+                            at[axis] = at[axis].round() + side / 256.0;
+                        }
+                        _ => {}
+                    }
+                    let dir = if kind == 6 { shared } else { random_dir(&mut rng).abs() * signs };
+                    (at, dir)
+                }),
+                _ => rays,
+            };
             let Some(rays) = rays else { continue };
-            answered += check(&scene, &rays)?;
+            let lanes = if kind == 7 { rng.below(u32::MAX) | 1 } else { u32::MAX };
+            answered += check_lanes(&scene, &rays, lanes)?;
             // A storage without packets answers no lane.
-            prop_assert_eq!(dense.trace_packet(&rays, 0.0, &mut [None; PACKET]), 0);
+            prop_assert_eq!(dense.trace_packet(&rays, u32::MAX, 0.0, &mut [None; PACKET]), 0);
         }
-        // Rays from outside toward the solid voxels are taken: the check
-        // above is not vacuous.
-        if kind == 3 && !scene.is_empty() {
+        // Rays from outside toward the solid voxels, and parallel rays
+        // from scattered origins, are taken: the check above is not
+        // vacuous.
+        if (kind == 3 || kind == 6) && !scene.is_empty() {
             prop_assert!(answered > 0);
         }
     }

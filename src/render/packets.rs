@@ -4,11 +4,10 @@
 //! walk alone, and every hit goes to the kernel's [`Kernel::shade`], so
 //! each pixel is the one [`Kernel::pixel`] gives.
 
-use crate::geom::Ray;
 use crate::render::camera::{Camera, BLOCK_HEIGHT, BLOCK_WIDTH};
 use crate::render::shader::Kernel;
 use crate::render::stats::{RayStats, Rect};
-use crate::scene::{Hit, Scene, WalkMemory, PACKET};
+use crate::scene::{Reach, Scene, WalkMemory, PACKET};
 
 /// Width of a tile whose rays go in packets (its height stays `TILE`,
 /// the threaded renderer's band): a packet's own walk shares the empty
@@ -54,33 +53,25 @@ pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
     put: &mut impl FnMut(u32, u32, u32),
     stats: &mut RayStats,
 ) {
-    // A pixel whose hit the packet found is shaded; one the packet left
-    // walks its ray alone; one of a partial block is the kernel's own.
-    let mut one =
-        |dx: u32, dy: u32, ray: Option<&Ray>, hit: Option<Option<Hit>>, memory: &mut _| {
-            let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
-            let (rgba, rays) = match (ray, hit) {
-                (Some(ray), Some(hit)) => kernel.shade(scene, ray, hit, (x, y), memory),
-                (Some(ray), None) => kernel.ray_pixel(scene, ray, (x, y), t_start, memory),
-                (None, _) => kernel.pixel(scene, x, y, t_start, memory),
-            };
-            put(dx, dy, rgba);
-            *stats += rays;
-        };
     // Offsets, which stay below the rectangle's size: no sum overflows.
     let (dx1, dy1) = (tile.x + tile.width, tile.y + tile.height);
     for by in (tile.y..dy1).step_by(BLOCK_HEIGHT as usize) {
         for bx in (tile.x..dx1).step_by(BLOCK_WIDTH as usize) {
             let (width, height) = ((dx1 - bx).min(BLOCK_WIDTH), (dy1 - by).min(BLOCK_HEIGHT));
             if (width, height) != (BLOCK_WIDTH, BLOCK_HEIGHT) {
+                // A partial block: the kernel's own pixels.
                 for dy in by..by + height {
                     for dx in bx..bx + width {
-                        one(dx, dy, None, None, memory);
+                        let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
+                        let (rgba, rays) = kernel.pixel(scene, x, y, t_start, memory);
+                        put(dx, dy, rgba);
+                        *stats += rays;
                     }
                 }
                 continue;
             }
-            let rays = camera.block_rays(rect.x.wrapping_add(bx), rect.y.wrapping_add(by));
+            let (x, y) = (rect.x.wrapping_add(bx), rect.y.wrapping_add(by));
+            let rays = camera.block_rays(x, y);
             let mut hits = [None; PACKET];
             // Clear forever: every ray misses (the promise of `t_start`).
             // Clear for no distance: the camera touches a solid voxel,
@@ -91,13 +82,25 @@ pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
             } else if t_start == 0.0 {
                 0
             } else {
-                scene.trace_packet(&rays, t_start, &mut hits)
+                scene.trace_packet(&rays, u32::MAX, t_start, &mut hits)
             };
             for (i, ray) in rays.iter().enumerate() {
-                let hit = (answered >> i & 1 != 0).then_some(hits[i]);
-                let (dx, dy) = (bx + i as u32 % BLOCK_WIDTH, by + i as u32 / BLOCK_WIDTH);
-                one(dx, dy, Some(ray), hit, memory);
+                if answered >> i & 1 == 0 {
+                    hits[i] = scene
+                        .trace_with(ray, Reach::after(t_start), memory, None)
+                        .hit;
+                }
             }
+            let lane = |i: usize| (i as u32 % BLOCK_WIDTH, i as u32 / BLOCK_WIDTH);
+            let at = |i| {
+                let (dx, dy) = lane(i);
+                (x.wrapping_add(dx), y.wrapping_add(dy))
+            };
+            kernel.shade_packet(scene, (&rays, &hits), at, memory, |i, rgba, rays| {
+                let (dx, dy) = lane(i);
+                put(bx + dx, by + dy, rgba);
+                *stats += rays;
+            });
         }
     }
 }

@@ -1,29 +1,29 @@
 //! The kernels a [`Shader`] runs a frame's job with, and the one match
 //! that picks them ([`Shader::dispatch`]): the unshaded look, the debug
 //! view of the boxes a walk crosses, the lit look with its effects as
-//! `const` switches (shadows, occlusion, fog, supersampling), and the path
+//! `const` switches (shadows, occlusion, fog, supersampling; its kernel
+//! lives in `lit.rs`), and the path
 //! tracer (whose kernel lives in `render/path/`, feature `path`) for scenes
 //! with metal, glass or emitters. Without the feature `effect-kernels` the
 //! lit look and the path tracer each compile one kernel, every switch on.
 
-use glam::{U8Vec3, UVec3};
+use glam::U8Vec3;
 
 use crate::geom::Ray;
 use crate::render::debug_view::{box_color, enters_near_edge};
-use crate::render::options::Background;
 #[cfg(feature = "path")]
 use crate::render::path::{Path, PathSetup};
-use crate::render::rays::{around, primary, secondary};
+use crate::render::rays::primary;
 #[cfg(feature = "path")]
 use crate::render::rounds::PixelSamples;
-use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
-use crate::render::shade::{face_index, fog_blend, lit, pack, pack_mean, sky, FLAT_SKY};
+use crate::render::shade::{pack, sky, FLAT_SKY};
+use crate::render::shader::lit::Lit;
 use crate::render::shader::{FrameJob, Kernel, Shader};
 #[cfg(feature = "path")]
 use crate::render::shader::{Resumable, RoundsJob};
 use crate::render::stats::RayStats;
 use crate::scene::WalkMemory;
-use crate::scene::{Hit, Reach, Scene};
+use crate::scene::{Hit, Scene};
 
 impl<'m> Shader<'_, 'm> {
     /// Runs `job` with the kernel compiled for this frame's effects.
@@ -224,183 +224,5 @@ impl Kernel for DebugView<'_, '_, '_> {
 
     fn uses_beam(&self) -> bool {
         false
-    }
-}
-
-/// The lit look with the chosen effects: shadows, ambient occlusion, fog and
-/// several samples per pixel, each compiled in only when on.
-///
-/// `EXACT`: the frame asks for exactly the effects compiled in (the
-/// dispatch of `effect-kernels` builds). Otherwise an effect runs when it
-/// is compiled in and the frame asks for it, so the kernel with every
-/// switch on gives any frame its pixels: builds without `effect-kernels`
-/// run every frame with that one.
-pub(super) struct Lit<
-    's,
-    'c,
-    'm,
-    const SHADOWS: bool,
-    const AO: bool,
-    const FOG: bool,
-    const AA: bool,
-    const EXACT: bool,
->(pub(super) &'s Shader<'c, 'm>);
-
-impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const EXACT: bool> Kernel
-    for Lit<'_, '_, '_, SHADOWS, AO, FOG, AA, EXACT>
-{
-    #[inline]
-    fn pixel<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        x: u32,
-        y: u32,
-        t_start: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> (u32, RayStats) {
-        let camera = self.0.camera;
-        if self.one_ray() {
-            let ray = camera.get_ray(x, y);
-            return self.ray_pixel(scene, &ray, (x, y), t_start, memory);
-        }
-        let samples = u32::from(self.0.options.samples);
-        let transparent = self.0.options.background == Background::Transparent;
-        let key = pixel_key(x, y, 0);
-        let mut sum = UVec3::ZERO;
-        let mut stats = RayStats::default();
-        for s in 0..samples {
-            let offset = r2(s, key);
-            let ray = camera.get_ray_at(x as f32 + offset.x, y as f32 + offset.y);
-            let (color, rays) = self.sample(scene, &ray, t_start, x, y, s, memory);
-            if rays.primary_hits > 0 {
-                sum += color.as_uvec3();
-            } else if !transparent {
-                sum += self.0.miss_color(color).as_uvec3();
-            }
-            stats += rays;
-        }
-        // The rounded mean, in integers.
-        let mean_of = |n: u32| ((sum + UVec3::splat(n / 2)) / n).as_u8vec3();
-        let hits = stats.primary_hits as u32;
-        (pack_mean(samples, hits, transparent, mean_of), stats)
-    }
-
-    /// One sample per pixel (occlusion and fog test their settings
-    /// anyway).
-    fn one_ray(&self) -> bool {
-        !(AA && (EXACT || self.0.options.samples > 1))
-    }
-
-    #[inline]
-    fn shade<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        ray: &Ray,
-        hit: Option<Hit>,
-        (x, y): (u32, u32),
-        memory: &mut WalkMemory<'s>,
-    ) -> (u32, RayStats) {
-        let (color, stats) = self.shade_sample(scene, ray, hit, x, y, 0, memory);
-        if stats.primary_hits == 0 {
-            return (self.0.miss(color), stats);
-        }
-        (pack(color), stats)
-    }
-}
-
-impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const EXACT: bool>
-    Lit<'_, '_, '_, SHADOWS, AO, FOG, AA, EXACT>
-{
-    /// One camera sample, its walk starting at `t_start`: its color (the
-    /// sky's when it misses: `primary_hits` is then 0) and rays.
-    #[allow(clippy::too_many_arguments)]
-    #[inline]
-    fn sample<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        ray: &Ray,
-        t_start: f32,
-        x: u32,
-        y: u32,
-        sample: u32,
-        memory: &mut WalkMemory<'s>,
-    ) -> (U8Vec3, RayStats) {
-        let hit = scene
-            .trace_with(ray, Reach::after(t_start), memory, None)
-            .hit;
-        self.shade_sample(scene, ray, hit, x, y, sample, memory)
-    }
-
-    /// [`Lit::sample`] of the camera ray `ray` whose hit is `hit`.
-    #[allow(clippy::too_many_arguments)]
-    #[inline]
-    fn shade_sample<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        ray: &Ray,
-        hit: Option<Hit>,
-        x: u32,
-        y: u32,
-        sample: u32,
-        memory: &mut WalkMemory<'s>,
-    ) -> (U8Vec3, RayStats) {
-        let shader = self.0;
-        let mut stats = primary(hit.as_ref());
-        let Some(hit) = hit else {
-            return (sky(ray.dir()), stats);
-        };
-        let face = face_index(hit.face);
-        let mut light = u32::from(shader.light[face]);
-        if SHADOWS && (EXACT || shader.options.shadows) && shader.sunlit[face] {
-            stats.shadow_rays += 1;
-            if let Some(shadow) = secondary(ray, &hit, shader.sun) {
-                let blocker = scene
-                    .trace_with(
-                        &shadow,
-                        Reach::ALL,
-                        // Begun from the hit's node, known to the walk
-                        // that found it (a copy: the next pixel's primary
-                        // ray begins from that hit too).
-                        &mut memory.clone(),
-                        None,
-                    )
-                    .hit;
-                if blocker.is_some() {
-                    light = u32::from(shader.shadowed[face]);
-                }
-            }
-        }
-        if AO {
-            if let (Some(entered), Some(ao)) = (hit.face, shader.options.occlusion) {
-                let rays = u32::from(ao.rays);
-                let key = pixel_key(x, y, 1 + sample);
-                let mut open = 0;
-                for j in 0..rays {
-                    let dir = around(entered, cosine_hemisphere(r2(j, key)));
-                    let blocked = secondary(ray, &hit, dir)
-                        .and_then(|r| {
-                            scene
-                                .trace_with(
-                                    &r,
-                                    Reach::within(ao.distance),
-                                    &mut memory.clone(),
-                                    None,
-                                )
-                                .hit
-                        })
-                        .is_some();
-                    open += u32::from(!blocked);
-                }
-                stats.ao_rays += u64::from(rays);
-                light = light * open / rays;
-            }
-        }
-        let mut color = lit(hit.voxel.color, light);
-        if FOG {
-            if let Some(fog) = shader.options.fog {
-                color = fog_blend(color, hit.t, fog.distance);
-            }
-        }
-        (color, stats)
     }
 }

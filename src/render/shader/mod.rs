@@ -7,7 +7,8 @@
 //! on for every effect). Every renderer (pixel, span, region, threaded) is a
 //! job, so they all compute pixels with the same code. This file holds
 //! what a frame's pixels need and the traits of jobs and kernels; the
-//! kernels and the dispatch are in [`kernels`].
+//! kernels and the dispatch are in [`kernels`], the lit look's kernel in
+//! [`lit`].
 //!
 //! Scenes whose voxels use metal, glass or emitters (the [`EffectPlan`]
 //! says) get the path tracer instead (feature `path`), compiled for the
@@ -38,9 +39,12 @@ use crate::render::plan::{EffectPlan, Look};
 use crate::render::rounds::PixelSamples;
 use crate::render::shade::{face_weights, pack};
 use crate::render::stats::RayStats;
+#[cfg(feature = "packets")]
+use crate::scene::PACKET;
 use crate::scene::{Hit, Reach, Scene, WalkMemory};
 
 mod kernels;
+mod lit;
 #[cfg(all(test, feature = "alloc"))]
 mod one_kernel;
 
@@ -193,6 +197,27 @@ pub(crate) trait Kernel: Sync {
     ) -> (u32, RayStats) {
         let _ = (ray, hit);
         self.pixel(scene, x, y, 0.0, memory)
+    }
+
+    /// [`Kernel::shade`] of a packet's lanes: `put(i, rgba, rays)` gets
+    /// lane `i`'s pixel (at `at(i)`, of the primary ray `rays[i]` whose
+    /// hit is `hits[i]`), the same pixel and rays as [`Kernel::pixel`].
+    /// What lets a kernel trace the secondary rays of neighbouring hits
+    /// together; the default shades lane by lane.
+    #[cfg(feature = "packets")]
+    #[inline]
+    fn shade_packet<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        (rays, hits): (&[Ray; PACKET], &[Option<Hit>; PACKET]),
+        at: impl Fn(usize) -> (u32, u32),
+        memory: &mut WalkMemory<'s>,
+        mut put: impl FnMut(usize, u32, RayStats),
+    ) {
+        for (i, (ray, &hit)) in rays.iter().zip(hits).enumerate() {
+            let (rgba, rays) = self.shade(scene, ray, hit, at(i), memory);
+            put(i, rgba, rays);
+        }
     }
 }
 

@@ -13,7 +13,7 @@ use crate::geom::IAabb;
 use crate::material::{Material, Materials};
 use crate::render::camera::{Camera, CameraSettings};
 use crate::render::options::{Background, Fog, Lighting, Occlusion, RenderOptions};
-use crate::render::shader::kernels::Lit;
+use crate::render::shader::lit::Lit;
 use crate::render::shader::{FrameJob, Kernel, Shader};
 use crate::render::stats::{RayStats, Rect};
 use crate::render::tiles::render_tiles;

@@ -172,10 +172,11 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
     fn trace_packet(
         &self,
         rays: &[Ray; PACKET],
+        lanes: u32,
         clear: f32,
         hits: &mut [Option<Hit>; PACKET],
     ) -> u32 {
-        self.packet(rays, clear, hits)
+        self.packet(rays, lanes, clear, hits)
     }
 
     fn storage_bytes(&self) -> usize {

@@ -56,19 +56,38 @@ struct Found<'h> {
 }
 
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
-    /// [`crate::Scene::trace_packet`] for the octree: the lanes from the
-    /// packet's first ray's origin whose direction moves along every axis
-    /// with its signs.
+    /// [`crate::Scene::trace_packet`] for the octree: the lanes of
+    /// `lanes` whose direction moves along every axis with the signs of
+    /// the first one's.
     pub(super) fn packet(
         &self,
         rays: &[Ray; PACKET],
+        lanes: u32,
         clear: f32,
         hits: &mut [Option<Hit>; PACKET],
     ) -> u32 {
-        if self.occupied.is_empty() || clear.is_nan() || clear == f32::INFINITY {
+        if lanes == 0 || self.occupied.is_empty() || clear.is_nan() || clear == f32::INFINITY {
             return 0;
         }
-        let (packet, taken) = Packet::of(rays, clear);
+        // A camera's pixels share their origin: their crossings take one
+        // subtraction per plane, not one per lane.
+        let origin = |i: usize| rays[i].lanes().0.to_array().map(f32::to_bits);
+        let first = origin(lanes.trailing_zeros() as usize);
+        let one_origin = bits(lanes).all(|i| origin(i) == first);
+        if one_origin {
+            self.walk_packet(Packet::<true>::of(rays, lanes, clear), hits)
+        } else {
+            self.walk_packet(Packet::<false>::of(rays, lanes, clear), hits)
+        }
+    }
+
+    /// [`OctreeScene::packet`] of the lanes `taken` of `packet`.
+    #[inline(always)]
+    fn walk_packet<const ONE_ORIGIN: bool>(
+        &self,
+        (packet, taken): (Packet<ONE_ORIGIN>, u32),
+        hits: &mut [Option<Hit>; PACKET],
+    ) -> u32 {
         if taken == 0 {
             return 0;
         }
@@ -98,9 +117,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// that ended in it (hit, or undecided). Branches are taken by the
     /// packet's hull, leaves by each lane's crossings.
     #[allow(clippy::too_many_arguments)]
-    fn node(
+    fn node<const ONE_ORIGIN: bool>(
         &self,
-        packet: &Packet,
+        packet: &Packet<ONE_ORIGIN>,
         node: Node,
         corner: Vec3A,
         log: u32,
@@ -139,9 +158,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// side 2^log at `corner`, the packet's hull `hull`) by each lane's
     /// crossings, children the hull misses skipped first.
     #[allow(clippy::too_many_arguments)]
-    fn leaf(
+    fn leaf<const ONE_ORIGIN: bool>(
         &self,
-        packet: &Packet,
+        packet: &Packet<ONE_ORIGIN>,
         node: Node,
         corner: Vec3A,
         log: u32,
@@ -200,9 +219,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// Walks `lanes` through a solid cube (`cube`: its corner, log2 of its
     /// side and the packet's hull; `slabs` its crossings), halved down to
     /// the voxel each lane enters first.
-    fn solid(
+    fn solid<const ONE_ORIGIN: bool>(
         &self,
-        packet: &Packet,
+        packet: &Packet<ONE_ORIGIN>,
         cube: (Vec3A, u32, Hull),
         slabs: &Slabs,
         lanes: u32,
@@ -224,9 +243,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// rays meet them, until every lane has ended; `enter` returns the
     /// lanes that ended in the child. Returns the lanes that ended.
     #[inline(always)]
-    fn children(
+    fn children<const ONE_ORIGIN: bool>(
         &self,
-        packet: &Packet,
+        packet: &Packet<ONE_ORIGIN>,
         (corner, log, hull): (Vec3A, u32, Hull),
         present: u8,
         slabs: &Slabs,
@@ -274,9 +293,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// Ends the lanes of `lanes` that visit the solid voxel at `corner`
     /// (crossings `slabs`) with a hit on it, and those that might with no
     /// answer; returns them.
-    fn voxel(
+    fn voxel<const ONE_ORIGIN: bool>(
         &self,
-        packet: &Packet,
+        packet: &Packet<ONE_ORIGIN>,
         corner: Vec3A,
         slabs: &Slabs,
         lanes: u32,

@@ -19,9 +19,15 @@ pub(super) type Wide = [Vec4; PACKET / 4];
 /// axis go back to the caller: their crossing times could overflow.
 pub(super) const MAX_INV: f32 = 4_294_967_296.0;
 
-/// A packet's shared origin and signs, and its lanes' reciprocals.
-pub(super) struct Packet {
-    pub(super) origin: Vec3A,
+/// A packet's lanes: their origins and reciprocals, and what they share.
+/// `ONE_ORIGIN`: every lane starts at `origin_lo` (a camera's pixels),
+/// and the per-lane origins are not kept.
+pub(super) struct Packet<const ONE_ORIGIN: bool> {
+    /// The origin per axis, per lane.
+    pub(super) origin: [Wide; 3],
+    /// The least and the greatest origin per axis over the lanes.
+    pub(super) origin_lo: Vec3A,
+    pub(super) origin_hi: Vec3A,
     /// The reciprocal direction per axis, per lane.
     pub(super) inv: [Wide; 3],
     /// The least and the greatest reciprocal per axis over the lanes.
@@ -37,33 +43,45 @@ pub(super) struct Packet {
     pub(super) floor: f32,
 }
 
-impl Packet {
+impl<const ONE_ORIGIN: bool> Packet<ONE_ORIGIN> {
     /// The packet of the lanes of `rays` it can take, and those lanes (a
-    /// bit each): the rays from the first ray's origin that move along
-    /// every axis, with the first ray's signs and reciprocals below
-    /// [`MAX_INV`]. `clear` is the caller's clear distance.
+    /// bit each): of the lanes in `lanes`, the rays that move along every
+    /// axis, with the first one's signs and reciprocals below
+    /// [`MAX_INV`], and with `ONE_ORIGIN` the first one's origin.
+    /// `clear` is the caller's clear distance.
     #[inline]
-    pub(super) fn of(rays: &[Ray; PACKET], clear: f32) -> (Packet, u32) {
-        let (origin, first_dir, _) = rays[0].lanes();
+    pub(super) fn of(rays: &[Ray; PACKET], lanes: u32, clear: f32) -> (Self, u32) {
+        let first = (lanes.trailing_zeros() as usize).min(PACKET - 1);
+        let (first_origin, first_dir, _) = rays[first].lanes();
         let down = first_dir.cmplt(Vec3A::ZERO);
+        let mut origin = [[Vec4::ZERO; PACKET / 4]; 3];
         let mut inv = [[Vec4::ZERO; PACKET / 4]; 3];
+        let (mut origin_lo, mut origin_hi) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
         let (mut inv_lo, mut inv_hi) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
         let mut taken = 0u32;
         for (i, ray) in rays.iter().enumerate() {
             let (o, dir, inv_dir) = ray.lanes();
             let moving = dir.cmpne(Vec3A::ZERO) & inv_dir.abs().cmplt(Vec3A::splat(MAX_INV));
-            let same = o.to_array().map(f32::to_bits) == origin.to_array().map(f32::to_bits);
-            if same && moving.all() && dir.cmplt(Vec3A::ZERO).bitmask() == down.bitmask() {
+            let same = o.to_array().map(f32::to_bits) == first_origin.to_array().map(f32::to_bits);
+            let wanted = lanes >> i & 1 != 0 && (same || !ONE_ORIGIN);
+            if wanted && moving.all() && dir.cmplt(Vec3A::ZERO).bitmask() == down.bitmask() {
                 taken |= 1 << i;
+                origin_lo = origin_lo.min(o);
+                origin_hi = origin_hi.max(o);
                 inv_lo = inv_lo.min(inv_dir);
                 inv_hi = inv_hi.max(inv_dir);
             }
-            for (axis, wide) in inv.iter_mut().enumerate() {
-                wide[i / 4][i % 4] = inv_dir[axis];
+            for axis in 0..3 {
+                if !ONE_ORIGIN {
+                    origin[axis][i / 4][i % 4] = o[axis];
+                }
+                inv[axis][i / 4][i % 4] = inv_dir[axis];
             }
         }
-        let packet = Packet {
+        let packet = Self {
             origin,
+            origin_lo,
+            origin_hi,
             inv,
             inv_lo,
             inv_hi,
@@ -86,18 +104,27 @@ impl Packet {
     }
 
     /// The earliest and the latest time at which any lane crosses each
-    /// axis' plane of `planes`: the crossings `(plane - origin) * inv`
-    /// of the least and the greatest reciprocal, as rounding keeps the
-    /// order of products by one factor.
+    /// axis' plane of `planes`. A lane's crossing `(plane - origin) *
+    /// inv` only grows or only shrinks with each factor, and rounding
+    /// keeps that order, so the extremes are among the products of the
+    /// ends of the two ranges.
     #[inline(always)]
     pub(super) fn spans(&self, planes: Vec3A) -> (Vec3A, Vec3A) {
-        let from_origin = planes - self.origin;
-        let ahead = from_origin.cmpge(Vec3A::ZERO);
-        let (by_lo, by_hi) = (from_origin * self.inv_lo, from_origin * self.inv_hi);
-        (
-            Vec3A::select(ahead, by_lo, by_hi),
-            Vec3A::select(ahead, by_hi, by_lo),
-        )
+        if ONE_ORIGIN {
+            // One factor per lane: its order is the reciprocals' order,
+            // or the reverse behind the origin.
+            let from_origin = planes - self.origin_lo;
+            let ahead = from_origin.cmpge(Vec3A::ZERO);
+            let (by_lo, by_hi) = (from_origin * self.inv_lo, from_origin * self.inv_hi);
+            return (
+                Vec3A::select(ahead, by_lo, by_hi),
+                Vec3A::select(ahead, by_hi, by_lo),
+            );
+        }
+        let (least, most) = (planes - self.origin_hi, planes - self.origin_lo);
+        let (a, b) = (least * self.inv_lo, least * self.inv_hi);
+        let (c, d) = (most * self.inv_lo, most * self.inv_hi);
+        (a.min(b).min(c.min(d)), a.max(b).max(c.max(d)))
     }
 }
 
@@ -198,13 +225,18 @@ pub(super) struct Slabs<'a> {
 
 /// The times at which the lanes cross the plane at `plane` of `axis`.
 #[inline(always)]
-pub(super) fn crossings(packet: &Packet, axis: usize, plane: f32) -> Wide {
-    let from_origin = Vec4::splat(plane - packet.origin[axis]);
-    let mut times = packet.inv[axis];
-    for time in &mut times {
-        *time *= from_origin;
+pub(super) fn crossings<const ONE_ORIGIN: bool>(
+    packet: &Packet<ONE_ORIGIN>,
+    axis: usize,
+    plane: f32,
+) -> Wide {
+    let inv = &packet.inv[axis];
+    if ONE_ORIGIN {
+        let from_origin = Vec4::splat(plane - packet.origin_lo[axis]);
+        return core::array::from_fn(|k| from_origin * inv[k]);
     }
-    times
+    let (plane, origin) = (Vec4::splat(plane), &packet.origin[axis]);
+    core::array::from_fn(|k| (plane - origin[k]) * inv[k])
 }
 
 /// The lanes of `lanes` (bits) whose ray may enter the cube of `slabs` at

@@ -1,0 +1,259 @@
+//! The lit look: face light, and the effects a frame asks for as `const`
+//! switches (shadows, occlusion, fog, supersampling). A packet of its
+//! camera rays sends its shadow rays toward the sun in a packet too
+//! ([`Kernel::shade_packet`]): parallel rays from neighbouring hits.
+
+use glam::{U8Vec3, UVec3};
+
+use crate::geom::Ray;
+use crate::render::options::Background;
+use crate::render::rays::{around, primary, secondary};
+use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
+use crate::render::shade::{face_index, fog_blend, lit, pack, pack_mean, sky};
+use crate::render::shader::{Kernel, Shader};
+use crate::render::stats::RayStats;
+#[cfg(feature = "packets")]
+use crate::scene::PACKET;
+use crate::scene::{Hit, Reach, Scene, WalkMemory};
+
+/// The lit look with the chosen effects: shadows, ambient occlusion, fog and
+/// several samples per pixel, each compiled in only when on.
+///
+/// `EXACT`: the frame asks for exactly the effects compiled in (the
+/// dispatch of `effect-kernels` builds). Otherwise an effect runs when it
+/// is compiled in and the frame asks for it, so the kernel with every
+/// switch on gives any frame its pixels: builds without `effect-kernels`
+/// run every frame with that one.
+pub(super) struct Lit<
+    's,
+    'c,
+    'm,
+    const SHADOWS: bool,
+    const AO: bool,
+    const FOG: bool,
+    const AA: bool,
+    const EXACT: bool,
+>(pub(super) &'s Shader<'c, 'm>);
+
+impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const EXACT: bool> Kernel
+    for Lit<'_, '_, '_, SHADOWS, AO, FOG, AA, EXACT>
+{
+    #[inline]
+    fn pixel<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        x: u32,
+        y: u32,
+        t_start: f32,
+        memory: &mut WalkMemory<'s>,
+    ) -> (u32, RayStats) {
+        let camera = self.0.camera;
+        if self.one_ray() {
+            let ray = camera.get_ray(x, y);
+            return self.ray_pixel(scene, &ray, (x, y), t_start, memory);
+        }
+        let samples = u32::from(self.0.options.samples);
+        let transparent = self.0.options.background == Background::Transparent;
+        let key = pixel_key(x, y, 0);
+        let mut sum = UVec3::ZERO;
+        let mut stats = RayStats::default();
+        for s in 0..samples {
+            let offset = r2(s, key);
+            let ray = camera.get_ray_at(x as f32 + offset.x, y as f32 + offset.y);
+            let (color, rays) = self.sample(scene, &ray, t_start, x, y, s, memory);
+            if rays.primary_hits > 0 {
+                sum += color.as_uvec3();
+            } else if !transparent {
+                sum += self.0.miss_color(color).as_uvec3();
+            }
+            stats += rays;
+        }
+        // The rounded mean, in integers.
+        let mean_of = |n: u32| ((sum + UVec3::splat(n / 2)) / n).as_u8vec3();
+        let hits = stats.primary_hits as u32;
+        (pack_mean(samples, hits, transparent, mean_of), stats)
+    }
+
+    /// One sample per pixel (occlusion and fog test their settings
+    /// anyway).
+    fn one_ray(&self) -> bool {
+        !(AA && (EXACT || self.0.options.samples > 1))
+    }
+
+    #[inline]
+    fn shade<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        ray: &Ray,
+        hit: Option<Hit>,
+        (x, y): (u32, u32),
+        memory: &mut WalkMemory<'s>,
+    ) -> (u32, RayStats) {
+        let shaded = self.shade_sample(scene, ray, hit, (x, y, 0), memory, None);
+        self.packed(shaded)
+    }
+
+    /// The shadow rays of the lanes whose hit faces the sun, traced as a
+    /// packet (they are parallel, and start at neighbouring hits); the
+    /// lanes it leaves trace theirs alone, in [`Lit::shade_sample`].
+    #[cfg(feature = "packets")]
+    #[inline]
+    fn shade_packet<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        (rays, hits): (&[Ray; PACKET], &[Option<Hit>; PACKET]),
+        at: impl Fn(usize) -> (u32, u32),
+        memory: &mut WalkMemory<'s>,
+        mut put: impl FnMut(usize, u32, RayStats),
+    ) {
+        let mut blocked = [None; PACKET];
+        if self.shadows() {
+            let (mut shadows, mut lanes) = (*rays, 0u32);
+            for (i, hit) in hits.iter().enumerate() {
+                if let Some(shadow) = hit.as_ref().and_then(|hit| self.shadow_ray(&rays[i], hit)) {
+                    shadows[i] = shadow;
+                    lanes |= 1 << i;
+                }
+            }
+            let mut blockers = [None; PACKET];
+            let answered = scene.trace_packet(&shadows, lanes, 0.0, &mut blockers);
+            for (i, blocked) in blocked.iter_mut().enumerate() {
+                if answered >> i & 1 != 0 {
+                    *blocked = Some(blockers[i].is_some());
+                }
+            }
+        }
+        for (i, (ray, &hit)) in rays.iter().zip(hits).enumerate() {
+            let (x, y) = at(i);
+            let shaded = self.shade_sample(scene, ray, hit, (x, y, 0), memory, blocked[i]);
+            let (rgba, rays) = self.packed(shaded);
+            put(i, rgba, rays);
+        }
+    }
+}
+
+impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const EXACT: bool>
+    Lit<'_, '_, '_, SHADOWS, AO, FOG, AA, EXACT>
+{
+    /// One camera sample, its walk starting at `t_start`: its color (the
+    /// sky's when it misses: `primary_hits` is then 0) and rays.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn sample<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        ray: &Ray,
+        t_start: f32,
+        x: u32,
+        y: u32,
+        sample: u32,
+        memory: &mut WalkMemory<'s>,
+    ) -> (U8Vec3, RayStats) {
+        let hit = scene
+            .trace_with(ray, Reach::after(t_start), memory, None)
+            .hit;
+        self.shade_sample(scene, ray, hit, (x, y, sample), memory, None)
+    }
+
+    /// Whether the frame's hits send shadow rays.
+    #[inline]
+    fn shadows(&self) -> bool {
+        SHADOWS && (EXACT || self.0.options.shadows)
+    }
+
+    /// The shadow ray of the camera ray `ray`'s hit `hit`, toward the sun:
+    /// `None` when the frame has no shadows, the face is turned from the
+    /// sun, or the hit has no face.
+    #[inline]
+    fn shadow_ray(&self, ray: &Ray, hit: &Hit) -> Option<Ray> {
+        let shader = self.0;
+        let sunlit = self.shadows() && shader.sunlit[face_index(hit.face)];
+        sunlit.then(|| secondary(ray, hit, shader.sun)).flatten()
+    }
+
+    /// A one-ray pixel's packed color from its shaded sample.
+    #[inline]
+    fn packed(&self, (color, stats): (U8Vec3, RayStats)) -> (u32, RayStats) {
+        if stats.primary_hits == 0 {
+            return (self.0.miss(color), stats);
+        }
+        (pack(color), stats)
+    }
+
+    /// [`Lit::sample`] `sample` of pixel `(x, y)`, of the camera ray
+    /// `ray` whose hit is `hit`. `blocked`: whether its shadow ray hits
+    /// something, when the caller traced it (in a packet); `None` traces
+    /// it here.
+    #[inline]
+    fn shade_sample<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        ray: &Ray,
+        hit: Option<Hit>,
+        (x, y, sample): (u32, u32, u32),
+        memory: &mut WalkMemory<'s>,
+        blocked: Option<bool>,
+    ) -> (U8Vec3, RayStats) {
+        let shader = self.0;
+        let mut stats = primary(hit.as_ref());
+        let Some(hit) = hit else {
+            return (sky(ray.dir()), stats);
+        };
+        let face = face_index(hit.face);
+        let mut light = u32::from(shader.light[face]);
+        if self.shadows() && shader.sunlit[face] {
+            stats.shadow_rays += 1;
+            let blocked = blocked.unwrap_or_else(|| {
+                self.shadow_ray(ray, &hit).is_some_and(|shadow| {
+                    scene
+                        .trace_with(
+                            &shadow,
+                            Reach::ALL,
+                            // Begun from the hit's node, known to the walk
+                            // that found it (a copy: the next pixel's
+                            // primary ray begins from that hit too).
+                            &mut memory.clone(),
+                            None,
+                        )
+                        .hit
+                        .is_some()
+                })
+            });
+            if blocked {
+                light = u32::from(shader.shadowed[face]);
+            }
+        }
+        if AO {
+            if let (Some(entered), Some(ao)) = (hit.face, shader.options.occlusion) {
+                let rays = u32::from(ao.rays);
+                let key = pixel_key(x, y, 1 + sample);
+                let mut open = 0;
+                for j in 0..rays {
+                    let dir = around(entered, cosine_hemisphere(r2(j, key)));
+                    let blocked = secondary(ray, &hit, dir)
+                        .and_then(|r| {
+                            scene
+                                .trace_with(
+                                    &r,
+                                    Reach::within(ao.distance),
+                                    &mut memory.clone(),
+                                    None,
+                                )
+                                .hit
+                        })
+                        .is_some();
+                    open += u32::from(!blocked);
+                }
+                stats.ao_rays += u64::from(rays);
+                light = light * open / rays;
+            }
+        }
+        let mut color = lit(hit.voxel.color, light);
+        if FOG {
+            if let Some(fog) = shader.options.fog {
+                color = fog_blend(color, hit.t, fog.distance);
+            }
+        }
+        (color, stats)
+    }
+}
