@@ -84,12 +84,14 @@ pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
             } else {
                 scene.trace_packet(&rays, u32::MAX, t_start, &mut hits)
             };
-            for (i, ray) in rays.iter().enumerate() {
-                if answered >> i & 1 == 0 {
-                    hits[i] = scene
-                        .trace_with(ray, Reach::after(t_start), memory, None)
-                        .hit;
-                }
+            // The lanes the packet left, lowest first.
+            let mut alone = !answered;
+            while alone != 0 {
+                let i = alone.trailing_zeros() as usize;
+                alone &= alone - 1;
+                hits[i] = scene
+                    .trace_with(&rays[i], Reach::after(t_start), memory, None)
+                    .hit;
             }
             let lane = |i: usize| (i as u32 % BLOCK_WIDTH, i as u32 / BLOCK_WIDTH);
             let at = |i| {

@@ -45,7 +45,8 @@ use crate::storage::octree::OctreeScene;
 mod lanes;
 
 use lanes::{
-    bits, crossings, entering, in_flipped_order, lane, present, visiting, Hull, Packet, Slabs,
+    bits, crossings, entering, in_flipped_order, lane, present, visiting, Hull, Origins, Packet,
+    Slabs, Wide,
 };
 
 /// What a packet's walk hands back: each lane's hit, and the lanes it
@@ -70,22 +71,25 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             return 0;
         }
         // A camera's pixels share their origin: their crossings take one
-        // subtraction per plane, not one per lane.
-        let origin = |i: usize| rays[i].lanes().0.to_array().map(f32::to_bits);
-        let first = origin(lanes.trailing_zeros() as usize);
-        let one_origin = bits(lanes).all(|i| origin(i) == first);
-        if one_origin {
-            self.walk_packet(Packet::<true>::of(rays, lanes, clear), hits)
-        } else {
-            self.walk_packet(Packet::<false>::of(rays, lanes, clear), hits)
+        // subtraction per plane, not one per lane. Shadow rays' first and
+        // last lanes seldom do.
+        let origin = |lane: u32| rays[lane as usize].lanes().0.to_array().map(f32::to_bits);
+        if origin(lanes.trailing_zeros()) == origin(31 - lanes.leading_zeros()) {
+            let (packet, taken, one_origin) = Packet::<Vec3A>::of(rays, lanes, clear);
+            if one_origin {
+                return self.walk_packet(&packet, taken, hits);
+            }
         }
+        let (packet, taken, _) = Packet::<[Wide; 3]>::of(rays, lanes, clear);
+        self.walk_packet(&packet, taken, hits)
     }
 
     /// [`OctreeScene::packet`] of the lanes `taken` of `packet`.
     #[inline(always)]
-    fn walk_packet<const ONE_ORIGIN: bool>(
+    fn walk_packet<O: Origins>(
         &self,
-        (packet, taken): (Packet<ONE_ORIGIN>, u32),
+        packet: &Packet<O>,
+        taken: u32,
         hits: &mut [Option<Hit>; PACKET],
     ) -> u32 {
         if taken == 0 {
@@ -99,7 +103,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             far: packet.spans(far).1,
         };
         let done = if hull.entered(packet.floor) {
-            self.node(&packet, self.root, corner, log, hull, taken, &mut found)
+            self.node(packet, self.root, corner, log, hull, taken, &mut found)
         } else {
             0
         };
@@ -117,9 +121,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// that ended in it (hit, or undecided). Branches are taken by the
     /// packet's hull, leaves by each lane's crossings.
     #[allow(clippy::too_many_arguments)]
-    fn node<const ONE_ORIGIN: bool>(
+    fn node<O: Origins>(
         &self,
-        packet: &Packet<ONE_ORIGIN>,
+        packet: &Packet<O>,
         node: Node,
         corner: Vec3A,
         log: u32,
@@ -158,9 +162,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// side 2^log at `corner`, the packet's hull `hull`) by each lane's
     /// crossings, children the hull misses skipped first.
     #[allow(clippy::too_many_arguments)]
-    fn leaf<const ONE_ORIGIN: bool>(
+    fn leaf<O: Origins>(
         &self,
-        packet: &Packet<ONE_ORIGIN>,
+        packet: &Packet<O>,
         node: Node,
         corner: Vec3A,
         log: u32,
@@ -219,9 +223,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// Walks `lanes` through a solid cube (`cube`: its corner, log2 of its
     /// side and the packet's hull; `slabs` its crossings), halved down to
     /// the voxel each lane enters first.
-    fn solid<const ONE_ORIGIN: bool>(
+    fn solid<O: Origins>(
         &self,
-        packet: &Packet<ONE_ORIGIN>,
+        packet: &Packet<O>,
         cube: (Vec3A, u32, Hull),
         slabs: &Slabs,
         lanes: u32,
@@ -243,9 +247,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// rays meet them, until every lane has ended; `enter` returns the
     /// lanes that ended in the child. Returns the lanes that ended.
     #[inline(always)]
-    fn children<const ONE_ORIGIN: bool>(
+    fn children<O: Origins>(
         &self,
-        packet: &Packet<ONE_ORIGIN>,
+        packet: &Packet<O>,
         (corner, log, hull): (Vec3A, u32, Hull),
         present: u8,
         slabs: &Slabs,
@@ -293,9 +297,9 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// Ends the lanes of `lanes` that visit the solid voxel at `corner`
     /// (crossings `slabs`) with a hit on it, and those that might with no
     /// answer; returns them.
-    fn voxel<const ONE_ORIGIN: bool>(
+    fn voxel<O: Origins>(
         &self,
-        packet: &Packet<ONE_ORIGIN>,
+        packet: &Packet<O>,
         corner: Vec3A,
         slabs: &Slabs,
         lanes: u32,

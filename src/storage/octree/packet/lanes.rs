@@ -6,7 +6,7 @@
 //! voxel. Every time is a crossing the scalar walk computes the same way,
 //! `(plane - origin) * inv_dir`.
 
-use glam::{BVec3A, BVec4A, Vec3A, Vec4};
+use glam::{BVec3A, BVec4A, Mat4, Vec3A, Vec4};
 
 use crate::geom::Ray;
 use crate::scene::PACKET;
@@ -19,12 +19,58 @@ pub(super) type Wide = [Vec4; PACKET / 4];
 /// axis go back to the caller: their crossing times could overflow.
 pub(super) const MAX_INV: f32 = 4_294_967_296.0;
 
+/// Where a packet's lanes start: one origin for all (a camera's pixels,
+/// [`Vec3A`]) or one per lane (shadow rays from neighbouring hits, per
+/// axis per lane).
+pub(super) trait Origins: Sized {
+    /// Whether lanes may start elsewhere than the first lane.
+    const EACH: bool;
+
+    /// The origins of lanes starting at `each` (per axis, per lane), the
+    /// first lane at `first`.
+    fn of(each: [Wide; 3], first: Vec3A) -> Self;
+
+    /// The times at which the lanes, whose reciprocals along `axis` are
+    /// `inv`, cross the plane at `plane` of `axis`: `(plane - origin) *
+    /// inv`, as the scalar walk computes every crossing.
+    fn crossings(&self, inv: &Wide, axis: usize, plane: f32) -> Wide;
+}
+
+impl Origins for Vec3A {
+    const EACH: bool = false;
+
+    #[inline(always)]
+    fn of(_: [Wide; 3], first: Vec3A) -> Self {
+        first
+    }
+
+    /// One subtraction for every lane.
+    #[inline(always)]
+    fn crossings(&self, inv: &Wide, axis: usize, plane: f32) -> Wide {
+        let from_origin = Vec4::splat(plane - self[axis]);
+        core::array::from_fn(|k| from_origin * inv[k])
+    }
+}
+
+impl Origins for [Wide; 3] {
+    const EACH: bool = true;
+
+    #[inline(always)]
+    fn of(each: [Wide; 3], _: Vec3A) -> Self {
+        each
+    }
+
+    #[inline(always)]
+    fn crossings(&self, inv: &Wide, axis: usize, plane: f32) -> Wide {
+        let (plane, origin) = (Vec4::splat(plane), &self[axis]);
+        core::array::from_fn(|k| (plane - origin[k]) * inv[k])
+    }
+}
+
 /// A packet's lanes: their origins and reciprocals, and what they share.
-/// `ONE_ORIGIN`: every lane starts at `origin_lo` (a camera's pixels),
-/// and the per-lane origins are not kept.
-pub(super) struct Packet<const ONE_ORIGIN: bool> {
-    /// The origin per axis, per lane.
-    pub(super) origin: [Wide; 3],
+pub(super) struct Packet<O> {
+    /// Where the lanes start.
+    pub(super) origins: O,
     /// The least and the greatest origin per axis over the lanes.
     pub(super) origin_lo: Vec3A,
     pub(super) origin_hi: Vec3A,
@@ -43,53 +89,78 @@ pub(super) struct Packet<const ONE_ORIGIN: bool> {
     pub(super) floor: f32,
 }
 
-impl<const ONE_ORIGIN: bool> Packet<ONE_ORIGIN> {
-    /// The packet of the lanes of `rays` it can take, and those lanes (a
-    /// bit each): of the lanes in `lanes`, the rays that move along every
+impl<O: Origins> Packet<O> {
+    /// The packet of the lanes of `rays` it can take, those lanes (a bit
+    /// each), and whether every lane of `lanes` starts at the first one's
+    /// origin: of the lanes in `lanes`, the rays that move along every
     /// axis, with the first one's signs and reciprocals below
-    /// [`MAX_INV`], and with `ONE_ORIGIN` the first one's origin.
-    /// `clear` is the caller's clear distance.
+    /// [`MAX_INV`], and from the first one's origin unless
+    /// [`Origins::EACH`]. `clear` is the caller's clear distance.
     #[inline]
-    pub(super) fn of(rays: &[Ray; PACKET], lanes: u32, clear: f32) -> (Self, u32) {
+    pub(super) fn of(rays: &[Ray; PACKET], lanes: u32, clear: f32) -> (Self, u32, bool) {
         let first = (lanes.trailing_zeros() as usize).min(PACKET - 1);
         let (first_origin, first_dir, _) = rays[first].lanes();
         let down = first_dir.cmplt(Vec3A::ZERO);
         let mut origin = [[Vec4::ZERO; PACKET / 4]; 3];
         let mut inv = [[Vec4::ZERO; PACKET / 4]; 3];
-        let (mut origin_lo, mut origin_hi) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
-        let (mut inv_lo, mut inv_hi) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
-        let mut taken = 0u32;
-        for (i, ray) in rays.iter().enumerate() {
-            let (o, dir, inv_dir) = ray.lanes();
-            let moving = dir.cmpne(Vec3A::ZERO) & inv_dir.abs().cmplt(Vec3A::splat(MAX_INV));
-            let same = o.to_array().map(f32::to_bits) == first_origin.to_array().map(f32::to_bits);
-            let wanted = lanes >> i & 1 != 0 && (same || !ONE_ORIGIN);
-            if wanted && moving.all() && dir.cmplt(Vec3A::ZERO).bitmask() == down.bitmask() {
-                taken |= 1 << i;
-                origin_lo = origin_lo.min(o);
-                origin_hi = origin_hi.max(o);
-                inv_lo = inv_lo.min(inv_dir);
-                inv_hi = inv_hi.max(inv_dir);
-            }
+        let (mut origin_lo, mut origin_hi) = ([Vec4::INFINITY; 3], [Vec4::NEG_INFINITY; 3]);
+        let (mut inv_lo, mut inv_hi) = ([Vec4::INFINITY; 3], [Vec4::NEG_INFINITY; 3]);
+        let (mut taken, mut same_origin) = (0u32, 0u32);
+        for k in 0..PACKET / 4 {
+            // Four rays' origins, directions and reciprocals, per axis.
+            let quad = &rays[4 * k..4 * k + 4];
+            let per_axis = |part: fn(&Ray) -> Vec3A| {
+                let [a, b, c, d] = core::array::from_fn(|j| part(&quad[j]).extend(0.0));
+                let rows = Mat4::from_cols(a, b, c, d).transpose();
+                [rows.x_axis, rows.y_axis, rows.z_axis]
+            };
+            let (o, dir, v) = (
+                per_axis(|r| r.lanes().0),
+                per_axis(|r| r.lanes().1),
+                per_axis(|r| r.lanes().2),
+            );
+            let (mut ok, mut same) = (BVec4A::splat(true), 0xf);
             for axis in 0..3 {
-                if !ONE_ORIGIN {
-                    origin[axis][i / 4][i % 4] = o[axis];
-                }
-                inv[axis][i / 4][i % 4] = inv_dir[axis];
+                let moving =
+                    dir[axis].cmpne(Vec4::ZERO) & v[axis].abs().cmplt(Vec4::splat(MAX_INV));
+                let signs =
+                    dir[axis].cmplt(Vec4::ZERO) ^ BVec4A::splat(down.bitmask() >> axis & 1 != 0);
+                ok &= moving & !signs;
+                // The same bits: equal, and zeros of the same sign.
+                let first = first_origin[axis];
+                let first_sign = if first.is_sign_negative() { 0xf } else { 0 };
+                let equal = o[axis].cmpeq(Vec4::splat(first)).bitmask();
+                same &= equal & !(o[axis].is_negative_bitmask() ^ first_sign);
+            }
+            let asked = lanes >> (4 * k) & 0xf;
+            let take = ok.bitmask() & asked & if O::EACH { 0xf } else { same };
+            taken |= take << (4 * k);
+            same_origin |= same << (4 * k);
+            let take = BVec4A::new(take & 1 != 0, take & 2 != 0, take & 4 != 0, take & 8 != 0);
+            for axis in 0..3 {
+                origin_lo[axis] = origin_lo[axis].min(Vec4::select(take, o[axis], Vec4::INFINITY));
+                origin_hi[axis] =
+                    origin_hi[axis].max(Vec4::select(take, o[axis], Vec4::NEG_INFINITY));
+                inv_lo[axis] = inv_lo[axis].min(Vec4::select(take, v[axis], Vec4::INFINITY));
+                inv_hi[axis] = inv_hi[axis].max(Vec4::select(take, v[axis], Vec4::NEG_INFINITY));
+                origin[axis][k] = o[axis];
+                inv[axis][k] = v[axis];
             }
         }
+        let least = |w: [Vec4; 3]| Vec3A::from_array(w.map(Vec4::min_element));
+        let most = |w: [Vec4; 3]| Vec3A::from_array(w.map(Vec4::max_element));
         let packet = Self {
-            origin,
-            origin_lo,
-            origin_hi,
+            origins: O::of(origin, first_origin),
+            origin_lo: least(origin_lo),
+            origin_hi: most(origin_hi),
             inv,
-            inv_lo,
-            inv_hi,
+            inv_lo: least(inv_lo),
+            inv_hi: most(inv_hi),
             down,
             flip: down.bitmask() as usize,
             floor: clear.max(f32::from_bits(1)),
         };
-        (packet, taken)
+        (packet, taken, lanes & !same_origin == 0)
     }
 
     /// The planes of the cube of side `side` at `corner` that the lanes
@@ -110,9 +181,9 @@ impl<const ONE_ORIGIN: bool> Packet<ONE_ORIGIN> {
     /// ends of the two ranges.
     #[inline(always)]
     pub(super) fn spans(&self, planes: Vec3A) -> (Vec3A, Vec3A) {
-        if ONE_ORIGIN {
-            // One factor per lane: its order is the reciprocals' order,
-            // or the reverse behind the origin.
+        if !O::EACH {
+            // One origin: the order of one factor, the reciprocals', or
+            // its reverse behind the origin.
             let from_origin = planes - self.origin_lo;
             let ahead = from_origin.cmpge(Vec3A::ZERO);
             let (by_lo, by_hi) = (from_origin * self.inv_lo, from_origin * self.inv_hi);
@@ -225,18 +296,8 @@ pub(super) struct Slabs<'a> {
 
 /// The times at which the lanes cross the plane at `plane` of `axis`.
 #[inline(always)]
-pub(super) fn crossings<const ONE_ORIGIN: bool>(
-    packet: &Packet<ONE_ORIGIN>,
-    axis: usize,
-    plane: f32,
-) -> Wide {
-    let inv = &packet.inv[axis];
-    if ONE_ORIGIN {
-        let from_origin = Vec4::splat(plane - packet.origin_lo[axis]);
-        return core::array::from_fn(|k| from_origin * inv[k]);
-    }
-    let (plane, origin) = (Vec4::splat(plane), &packet.origin[axis]);
-    core::array::from_fn(|k| (plane - origin[k]) * inv[k])
+pub(super) fn crossings<O: Origins>(packet: &Packet<O>, axis: usize, plane: f32) -> Wide {
+    packet.origins.crossings(&packet.inv[axis], axis, plane)
 }
 
 /// The lanes of `lanes` (bits) whose ray may enter the cube of `slabs` at
