@@ -230,12 +230,12 @@ pub trait Scene {
     }
 
     /// The hits of the rays of a packet whose bits are set in `lanes`
-    /// (a camera's neighbouring pixels, or shadow rays from neighbouring
-    /// hits), each traced over [`Reach::after`]`(clear)`: for every lane
+    /// (a camera's neighbouring pixels, or the shadow or occlusion rays
+    /// of neighbouring hits), each traced over `reach`: for every lane
     /// `i` whose bit is set in the answer (only lanes of `lanes`),
     /// `hits[i]` is exactly the hit [`Scene::trace_with`] gives `rays[i]`
     /// over that reach, bit for bit, provided no ray hits anything before
-    /// `clear` (the promise of [`Reach::after`]). Lanes left unset (their
+    /// `reach.clear` (the promise of [`Reach`]). Lanes left unset (their
     /// `hits` untouched) are the caller's to trace one by one. What lets
     /// a storage walk coherent rays together; the default answers no
     /// lane.
@@ -244,10 +244,10 @@ pub trait Scene {
         &self,
         rays: &[Ray; PACKET],
         lanes: u32,
-        clear: f32,
+        reach: Reach,
         hits: &mut [Option<Hit>; PACKET],
     ) -> u32 {
-        let _ = (rays, lanes, clear, hits);
+        let _ = (rays, lanes, reach, hits);
         0
     }
 
@@ -324,10 +324,10 @@ macro_rules! forward_tracing {
             &self,
             rays: &[$crate::geom::Ray; $crate::scene::PACKET],
             lanes: u32,
-            clear: f32,
+            reach: $crate::scene::Reach,
             hits: &mut [Option<$crate::scene::Hit>; $crate::scene::PACKET],
         ) -> u32 {
-            $inner(self).trace_packet(rays, lanes, clear, hits)
+            $inner(self).trace_packet(rays, lanes, reach, hits)
         }
 
         fn storage_bytes(&self) -> usize {

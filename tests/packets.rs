@@ -16,44 +16,59 @@ use voxtrace::{
     WalkMemory, PACKET,
 };
 
-/// The one-ray walk's hit of `ray` over `Reach::after(clear)`.
-fn one_by_one(scene: &impl Scene, ray: &Ray, clear: f32) -> Option<Hit> {
+/// The one-ray walk's hit of `ray` over `reach`.
+fn one_by_one(scene: &impl Scene, ray: &Ray, reach: Reach) -> Option<Hit> {
     let memory = &mut WalkMemory::new();
-    scene.trace_with(ray, Reach::after(clear), memory, None).hit
+    scene.trace_with(ray, reach, memory, None).hit
 }
 
-/// Checks every answered lane of `rays` against the one-ray walk, at clear
-/// distance 0 and at the nearest hit of the packet (a promise the caller
-/// keeps); returns how many lanes were answered.
+/// Checks every answered lane of `rays` against the one-ray walk over
+/// the whole ray, from the nearest hit of the packet (a clear distance
+/// the caller promises), and within reaches that end exactly at a lane's
+/// hit, between hits and before any; returns how many lanes were
+/// answered.
 fn check(scene: &impl Scene, rays: &[Ray; PACKET]) -> Result<u32, TestCaseError> {
     check_lanes(scene, rays, u32::MAX)
 }
 
+/// The reaches [`check`] traces each packet over.
+const REACHES: u32 = 5;
+
 /// [`check`] of the lanes of `lanes` only: no other lane is answered.
 fn check_lanes(scene: &impl Scene, rays: &[Ray; PACKET], lanes: u32) -> Result<u32, TestCaseError> {
-    let alone: Vec<Option<Hit>> = rays.iter().map(|r| one_by_one(scene, r, 0.0)).collect();
-    let nearest = alone
+    let mut ts: Vec<f32> = rays
         .iter()
-        .flatten()
+        .filter_map(|r| one_by_one(scene, r, Reach::ALL))
         .map(|h| h.t)
-        .fold(f32::INFINITY, f32::min);
+        .collect();
+    ts.sort_by(f32::total_cmp);
+    let nearest = ts.first().copied().unwrap_or(f32::INFINITY);
+    let middle = ts.get(ts.len() / 2).copied().unwrap_or(3.0);
+    let reaches: [Reach; REACHES as usize] = [
+        Reach::ALL,
+        Reach::after(nearest.min(1e30)),
+        Reach::within(middle),
+        Reach::within(middle * 0.75 + 0.1),
+        Reach::within(1.5),
+    ];
     let mut answered = 0;
-    for clear in [0.0, nearest.min(1e30)] {
+    for reach in reaches {
         let mut hits = [None; PACKET];
-        let answered_lanes = scene.trace_packet(rays, lanes, clear, &mut hits);
+        let answered_lanes = scene.trace_packet(rays, lanes, reach, &mut hits);
         prop_assert_eq!(answered_lanes & !lanes, 0, "lanes not asked for answered");
         for i in 0..PACKET {
             if answered_lanes >> i & 1 != 0 {
+                let alone = one_by_one(scene, &rays[i], reach);
                 // Equal, and `t` bit for bit (`==` takes -0 for 0).
                 let t_bits = |h: &Option<Hit>| h.map(|h| h.t.to_bits());
                 prop_assert!(
-                    hits[i] == alone[i] && t_bits(&hits[i]) == t_bits(&alone[i]),
-                    "lane {} of {:?} clear {}: {:?} against {:?}",
+                    hits[i] == alone && t_bits(&hits[i]) == t_bits(&alone),
+                    "lane {} of {:?} over {:?}: {:?} against {:?}",
                     i,
                     rays[i],
-                    clear,
+                    reach,
                     hits[i],
-                    alone[i]
+                    alone
                 );
                 answered += 1;
             }
@@ -168,7 +183,7 @@ proptest! {
             let lanes = if kind == 7 { rng.below(u32::MAX) | 1 } else { u32::MAX };
             answered += check_lanes(&scene, &rays, lanes)?;
             // A storage without packets answers no lane.
-            prop_assert_eq!(dense.trace_packet(&rays, u32::MAX, 0.0, &mut [None; PACKET]), 0);
+            prop_assert_eq!(dense.trace_packet(&rays, u32::MAX, Reach::ALL, &mut [None; PACKET]), 0);
         }
         // Rays from outside toward the solid voxels, and parallel rays
         // from scattered origins, are taken: the check above is not
@@ -204,7 +219,7 @@ fn camera_blocks_over_the_terrain_are_the_one_ray_walks_hits() {
         for y in (0..48).step_by(PACKET / WIDTH as usize) {
             for x in (0..64).step_by(WIDTH as usize) {
                 answered += check(&scene, &camera_block(&camera, x, y)).unwrap();
-                lanes += 2 * PACKET as u32;
+                lanes += REACHES * PACKET as u32;
             }
         }
     }
@@ -262,7 +277,7 @@ fn camera_blocks_from_the_empty_space_inside_the_terrain_are_the_one_ray_walks_h
             for y in (0..48).step_by(PACKET / WIDTH as usize) {
                 for x in (0..64).step_by(WIDTH as usize) {
                     answered += check(&scene, &camera_block(&camera, x, y)).unwrap();
-                    lanes += 2 * PACKET as u32;
+                    lanes += REACHES * PACKET as u32;
                 }
             }
         }

@@ -82,7 +82,7 @@ pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
             } else if t_start == 0.0 {
                 0
             } else {
-                scene.trace_packet(&rays, u32::MAX, t_start, &mut hits)
+                scene.trace_packet(&rays, u32::MAX, Reach::after(t_start), &mut hits)
             };
             // The lanes the packet left, lowest first.
             let mut alone = !answered;

@@ -1,11 +1,11 @@
 //! The lit look: face light, and the effects a frame asks for as `const`
 //! switches (shadows, occlusion, fog, supersampling). A packet of its
-//! camera rays sends its shadow rays toward the sun in a packet too
-//! ([`Kernel::shade_packet`]): parallel rays from neighbouring hits.
+//! camera rays sends its hits' shadow and occlusion rays in packets too
+//! (`packets.rs`).
 
 use glam::{U8Vec3, UVec3};
 
-use crate::geom::Ray;
+use crate::geom::{Face, Ray};
 use crate::render::options::Background;
 use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
@@ -15,6 +15,9 @@ use crate::render::stats::RayStats;
 #[cfg(feature = "packets")]
 use crate::scene::PACKET;
 use crate::scene::{Hit, Reach, Scene, WalkMemory};
+
+#[cfg(feature = "packets")]
+mod packets;
 
 /// The lit look with the chosen effects: shadows, ambient occlusion, fog and
 /// several samples per pixel, each compiled in only when on.
@@ -89,13 +92,12 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         (x, y): (u32, u32),
         memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats) {
-        let shaded = self.shade_sample(scene, ray, hit, (x, y, 0), memory, None);
+        let shaded = self.shade_sample(scene, ray, hit, (x, y, 0), memory, Found::default());
         self.packed(shaded)
     }
 
-    /// The shadow rays of the lanes whose hit faces the sun, traced as a
-    /// packet (they are parallel, and start at neighbouring hits); the
-    /// lanes it leaves trace theirs alone, in [`Lit::shade_sample`].
+    /// The lanes' shadow and occlusion rays traced in packets
+    /// ([`Lit::secondary_in_packets`]), then each lane shaded.
     #[cfg(feature = "packets")]
     #[inline]
     fn shade_packet<'s, S: Scene + ?Sized>(
@@ -106,30 +108,24 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         memory: &mut WalkMemory<'s>,
         mut put: impl FnMut(usize, u32, RayStats),
     ) {
-        let mut blocked = [None; PACKET];
-        if self.shadows() {
-            let (mut shadows, mut lanes) = (*rays, 0u32);
-            for (i, hit) in hits.iter().enumerate() {
-                if let Some(shadow) = hit.as_ref().and_then(|hit| self.shadow_ray(&rays[i], hit)) {
-                    shadows[i] = shadow;
-                    lanes |= 1 << i;
-                }
-            }
-            let mut blockers = [None; PACKET];
-            let answered = scene.trace_packet(&shadows, lanes, 0.0, &mut blockers);
-            for (i, blocked) in blocked.iter_mut().enumerate() {
-                if answered >> i & 1 != 0 {
-                    *blocked = Some(blockers[i].is_some());
-                }
-            }
-        }
+        let found = self.secondary_in_packets(scene, (rays, hits), &at, memory);
         for (i, (ray, &hit)) in rays.iter().zip(hits).enumerate() {
             let (x, y) = at(i);
-            let shaded = self.shade_sample(scene, ray, hit, (x, y, 0), memory, blocked[i]);
+            let shaded = self.shade_sample(scene, ray, hit, (x, y, 0), memory, found[i]);
             let (rgba, rays) = self.packed(shaded);
             put(i, rgba, rays);
         }
     }
+}
+
+/// What a hit's secondary rays found, where the caller traced them (in
+/// packets); `None` leaves them to [`Lit::shade_sample`].
+#[derive(Clone, Copy, Default)]
+pub(super) struct Found {
+    /// Whether the shadow ray hits something.
+    blocked: Option<bool>,
+    /// How many occlusion rays meet nothing within their reach.
+    open: Option<u32>,
 }
 
 impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const EXACT: bool>
@@ -152,7 +148,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         let hit = scene
             .trace_with(ray, Reach::after(t_start), memory, None)
             .hit;
-        self.shade_sample(scene, ray, hit, (x, y, sample), memory, None)
+        self.shade_sample(scene, ray, hit, (x, y, sample), memory, Found::default())
     }
 
     /// Whether the frame's hits send shadow rays.
@@ -181,9 +177,8 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
     }
 
     /// [`Lit::sample`] `sample` of pixel `(x, y)`, of the camera ray
-    /// `ray` whose hit is `hit`. `blocked`: whether its shadow ray hits
-    /// something, when the caller traced it (in a packet); `None` traces
-    /// it here.
+    /// `ray` whose hit is `hit`; its secondary rays traced here, but for
+    /// what the caller `found`.
     #[inline]
     fn shade_sample<'s, S: Scene + ?Sized>(
         &self,
@@ -192,7 +187,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         hit: Option<Hit>,
         (x, y, sample): (u32, u32, u32),
         memory: &mut WalkMemory<'s>,
-        blocked: Option<bool>,
+        found: Found,
     ) -> (U8Vec3, RayStats) {
         let shader = self.0;
         let mut stats = primary(hit.as_ref());
@@ -203,7 +198,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         let mut light = u32::from(shader.light[face]);
         if self.shadows() && shader.sunlit[face] {
             stats.shadow_rays += 1;
-            let blocked = blocked.unwrap_or_else(|| {
+            let blocked = found.blocked.unwrap_or_else(|| {
                 self.shadow_ray(ray, &hit).is_some_and(|shadow| {
                     scene
                         .trace_with(
@@ -226,24 +221,17 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         if AO {
             if let (Some(entered), Some(ao)) = (hit.face, shader.options.occlusion) {
                 let rays = u32::from(ao.rays);
-                let key = pixel_key(x, y, 1 + sample);
-                let mut open = 0;
-                for j in 0..rays {
-                    let dir = around(entered, cosine_hemisphere(r2(j, key)));
-                    let blocked = secondary(ray, &hit, dir)
-                        .and_then(|r| {
-                            scene
-                                .trace_with(
-                                    &r,
-                                    Reach::within(ao.distance),
-                                    &mut memory.clone(),
-                                    None,
-                                )
-                                .hit
+                let open = found.open.unwrap_or_else(|| {
+                    let key = pixel_key(x, y, 1 + sample);
+                    let blocked = |j| {
+                        occlusion_ray(ray, &hit, entered, key, j).is_some_and(|r| {
+                            let memory = &mut memory.clone();
+                            let reach = Reach::within(ao.distance);
+                            scene.trace_with(&r, reach, memory, None).hit.is_some()
                         })
-                        .is_some();
-                    open += u32::from(!blocked);
-                }
+                    };
+                    (0..rays).map(|j| u32::from(!blocked(j))).sum()
+                });
                 stats.ao_rays += u64::from(rays);
                 light = light * open / rays;
             }
@@ -256,4 +244,13 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         }
         (color, stats)
     }
+}
+
+/// The occlusion ray `j` of the camera ray `ray`'s hit `hit`, entered
+/// through `entered`, for the pixel sample keyed `key`: `None` when no
+/// ray can leave the face (it then counts as open).
+#[inline]
+fn occlusion_ray(ray: &Ray, hit: &Hit, entered: Face, key: u32, j: u32) -> Option<Ray> {
+    let dir = around(entered, cosine_hemisphere(r2(j, key)));
+    secondary(ray, hit, dir)
 }

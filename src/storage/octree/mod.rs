@@ -173,10 +173,10 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
         &self,
         rays: &[Ray; PACKET],
         lanes: u32,
-        clear: f32,
+        reach: Reach,
         hits: &mut [Option<Hit>; PACKET],
     ) -> u32 {
-        self.packet(rays, lanes, clear, hits)
+        self.packet(rays, lanes, reach, hits)
     }
 
     fn storage_bytes(&self) -> usize {

@@ -37,17 +37,18 @@ use glam::Vec3A;
 
 use crate::geom::{Face, Ray};
 use crate::math::per_axis;
-use crate::scene::{Hit, PACKET};
+use crate::scene::{Hit, Reach, PACKET};
 use crate::storage::octree::grid::pow2;
 use crate::storage::octree::node::{brick_bit, child_offset, child_rank, Node, NodeKind, GROUP};
 use crate::storage::octree::OctreeScene;
 
 mod lanes;
+mod origins;
 
 use lanes::{
-    bits, crossings, entering, in_flipped_order, lane, present, visiting, Hull, Origins, Packet,
-    Slabs, Wide,
+    bits, crossings, entering, in_flipped_order, lane, present, visiting, Hull, Packet, Slabs,
 };
+use origins::{Origins, Wide};
 
 /// What a packet's walk hands back: each lane's hit, and the lanes it
 /// could not decide.
@@ -64,10 +65,14 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         &self,
         rays: &[Ray; PACKET],
         lanes: u32,
-        clear: f32,
+        reach: Reach,
         hits: &mut [Option<Hit>; PACKET],
     ) -> u32 {
+        let Reach { clear, max } = reach;
         if lanes == 0 || self.occupied.is_empty() || clear.is_nan() || clear == f32::INFINITY {
+            return 0;
+        }
+        if max.is_nan() || max < clear {
             return 0;
         }
         // A camera's pixels share their origin: their crossings take one
@@ -75,12 +80,12 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         // last lanes seldom do.
         let origin = |lane: u32| rays[lane as usize].lanes().0.to_array().map(f32::to_bits);
         if origin(lanes.trailing_zeros()) == origin(31 - lanes.leading_zeros()) {
-            let (packet, taken, one_origin) = Packet::<Vec3A>::of(rays, lanes, clear);
+            let (packet, taken, one_origin) = Packet::<Vec3A>::of(rays, lanes, reach);
             if one_origin {
                 return self.walk_packet(&packet, taken, hits);
             }
         }
-        let (packet, taken, _) = Packet::<[Wide; 3]>::of(rays, lanes, clear);
+        let (packet, taken, _) = Packet::<[Wide; 3]>::of(rays, lanes, reach);
         self.walk_packet(&packet, taken, hits)
     }
 
@@ -102,7 +107,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             near: packet.spans(near).0,
             far: packet.spans(far).1,
         };
-        let done = if hull.entered(packet.floor) {
+        let done = if hull.entered(packet.span) {
             self.node(packet, self.root, corner, log, hull, taken, &mut found)
         } else {
             0
@@ -139,7 +144,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let (mid_early, mid_late) = packet.spans(corner + half);
         // The children in the order the rays meet them (`i`: the octant
         // with the down-moving axes flipped), present and entered.
-        let order = hull.children_entered(mid_early, mid_late, packet.floor)
+        let order = hull.children_entered(mid_early, mid_late, packet.span)
             & in_flipped_order(children, packet.flip);
         let mut ended = 0;
         for i in bits(u32::from(order)) {
@@ -179,7 +184,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             near: [&near[0], &near[1], &near[2]],
             far: [&far[0], &far[1], &far[2]],
         };
-        let lanes = entering(slabs, packet.floor, lanes);
+        let lanes = entering(slabs, packet.span, lanes);
         if lanes == 0 {
             return 0;
         }
@@ -258,7 +263,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     ) -> u32 {
         let half = pow2(log - 1);
         let (mid_early, mid_late) = packet.spans(corner + half);
-        let order = hull.children_entered(mid_early, mid_late, packet.floor)
+        let order = hull.children_entered(mid_early, mid_late, packet.span)
             & in_flipped_order(present, packet.flip);
         if order == 0 {
             return 0;
@@ -278,7 +283,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                     child.near[axis] = mid;
                 }
             }
-            let entering = entering(&child, packet.floor, lanes);
+            let entering = entering(&child, packet.span, lanes);
             if entering == 0 {
                 continue;
             }
@@ -306,7 +311,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         material: u8,
         found: &mut Found,
     ) -> u32 {
-        let visits = visiting(slabs, lanes);
+        let visits = visiting(slabs, lanes, packet.span.ceiling);
         let (hit, undecided) = (visits.sure & lanes, visits.tied & lanes);
         found.undecided |= undecided;
         // Every lane's hit is on one voxel (one palette lookup, as every

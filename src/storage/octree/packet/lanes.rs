@@ -9,63 +9,12 @@
 use glam::{BVec3A, BVec4A, Mat4, Vec3A, Vec4};
 
 use crate::geom::Ray;
-use crate::scene::PACKET;
-
-/// One quantity on a packet's 32 lanes: eight `Vec4`s (SSE or NEON
-/// registers where glam has them, plain floats elsewhere).
-pub(super) type Wide = [Vec4; PACKET / 4];
+use crate::scene::{Reach, PACKET};
+use crate::storage::octree::packet::origins::{Origins, Wide};
 
 /// Lanes whose direction has a reciprocal at least this large on some
 /// axis go back to the caller: their crossing times could overflow.
 pub(super) const MAX_INV: f32 = 4_294_967_296.0;
-
-/// Where a packet's lanes start: one origin for all (a camera's pixels,
-/// [`Vec3A`]) or one per lane (shadow rays from neighbouring hits, per
-/// axis per lane).
-pub(super) trait Origins: Sized {
-    /// Whether lanes may start elsewhere than the first lane.
-    const EACH: bool;
-
-    /// The origins of lanes starting at `each` (per axis, per lane), the
-    /// first lane at `first`.
-    fn of(each: [Wide; 3], first: Vec3A) -> Self;
-
-    /// The times at which the lanes, whose reciprocals along `axis` are
-    /// `inv`, cross the plane at `plane` of `axis`: `(plane - origin) *
-    /// inv`, as the scalar walk computes every crossing.
-    fn crossings(&self, inv: &Wide, axis: usize, plane: f32) -> Wide;
-}
-
-impl Origins for Vec3A {
-    const EACH: bool = false;
-
-    #[inline(always)]
-    fn of(_: [Wide; 3], first: Vec3A) -> Self {
-        first
-    }
-
-    /// One subtraction for every lane.
-    #[inline(always)]
-    fn crossings(&self, inv: &Wide, axis: usize, plane: f32) -> Wide {
-        let from_origin = Vec4::splat(plane - self[axis]);
-        core::array::from_fn(|k| from_origin * inv[k])
-    }
-}
-
-impl Origins for [Wide; 3] {
-    const EACH: bool = true;
-
-    #[inline(always)]
-    fn of(each: [Wide; 3], _: Vec3A) -> Self {
-        each
-    }
-
-    #[inline(always)]
-    fn crossings(&self, inv: &Wide, axis: usize, plane: f32) -> Wide {
-        let (plane, origin) = (Vec4::splat(plane), &self[axis]);
-        core::array::from_fn(|k| (plane - origin[k]) * inv[k])
-    }
-}
 
 /// A packet's lanes: their origins and reciprocals, and what they share.
 pub(super) struct Packet<O> {
@@ -83,10 +32,8 @@ pub(super) struct Packet<O> {
     pub(super) down: BVec3A,
     /// The same as bits (`x | y << 1 | z << 2`).
     pub(super) flip: usize,
-    /// The least far crossing of a cube a lane may enter: the caller's
-    /// clear distance, and ahead of the origin (the least positive float
-    /// when the clear distance is 0).
-    pub(super) floor: f32,
+    /// The stretch of the lanes a cube must meet to be entered.
+    pub(super) span: Span,
 }
 
 impl<O: Origins> Packet<O> {
@@ -95,9 +42,9 @@ impl<O: Origins> Packet<O> {
     /// origin: of the lanes in `lanes`, the rays that move along every
     /// axis, with the first one's signs and reciprocals below
     /// [`MAX_INV`], and from the first one's origin unless
-    /// [`Origins::EACH`]. `clear` is the caller's clear distance.
+    /// [`Origins::EACH`], traced over `reach`.
     #[inline]
-    pub(super) fn of(rays: &[Ray; PACKET], lanes: u32, clear: f32) -> (Self, u32, bool) {
+    pub(super) fn of(rays: &[Ray; PACKET], lanes: u32, reach: Reach) -> (Self, u32, bool) {
         let first = (lanes.trailing_zeros() as usize).min(PACKET - 1);
         let (first_origin, first_dir, _) = rays[first].lanes();
         let down = first_dir.cmplt(Vec3A::ZERO);
@@ -158,7 +105,10 @@ impl<O: Origins> Packet<O> {
             inv_hi: most(inv_hi),
             down,
             flip: down.bitmask() as usize,
-            floor: clear.max(f32::from_bits(1)),
+            span: Span {
+                floor: reach.clear.max(f32::from_bits(1)),
+                ceiling: reach.max,
+            },
         };
         (packet, taken, lanes & !same_origin == 0)
     }
@@ -197,6 +147,17 @@ impl<O: Origins> Packet<O> {
         let (c, d) = (most * self.inv_lo, most * self.inv_hi);
         (a.min(b).min(c.min(d)), a.max(b).max(c.max(d)))
     }
+}
+
+/// The stretch of a lane's ray a cube must meet to be entered: a far
+/// crossing at least `floor` (the caller's clear distance, and ahead of
+/// the origin: the least positive float when that is 0), a near crossing
+/// at most `ceiling` (the reach's farthest hit: a voxel entered later is
+/// no hit, nor is any voxel behind it).
+#[derive(Clone, Copy)]
+pub(super) struct Span {
+    pub(super) floor: f32,
+    pub(super) ceiling: f32,
 }
 
 /// What the packet's lanes may do in a cube: per axis, the earliest near
@@ -258,7 +219,7 @@ impl Hull {
     /// [`Hull::entered`] for the eight children at once: bit `i` for child
     /// `i` ([`Hull::child`]).
     #[inline(always)]
-    pub(super) fn children_entered(self, mid_early: Vec3A, mid_late: Vec3A, floor: f32) -> u8 {
+    pub(super) fn children_entered(self, mid_early: Vec3A, mid_late: Vec3A, span: Span) -> u8 {
         let pick = |beyond, (near, mid): (f32, f32)| {
             Vec4::select(beyond, Vec4::splat(mid), Vec4::splat(near))
         };
@@ -266,24 +227,24 @@ impl Hull {
             .max(pick(BEYOND_Y, (self.near.y, mid_early.y)));
         let far_xy =
             pick(BEYOND_X, (mid_late.x, self.far.x)).min(pick(BEYOND_Y, (mid_late.y, self.far.y)));
-        let floor = Vec4::splat(floor);
+        let (floor, ceiling) = (Vec4::splat(span.floor), Vec4::splat(span.ceiling));
         let half = |near_z: f32, far_z: f32| {
             let (near, far) = (
                 near_xy.max(Vec4::splat(near_z)),
                 far_xy.min(Vec4::splat(far_z)),
             );
-            (near.cmple(far) & far.cmpge(floor)).bitmask() as u8
+            (near.cmple(far.min(ceiling)) & far.cmpge(floor)).bitmask() as u8
         };
         half(self.near.z, mid_late.z) | half(mid_early.z, self.far.z) << 4
     }
 
-    /// Whether some lane may enter the cube at or after `floor`: never
-    /// false when a lane's own crossings enter it (each lane's latest near
+    /// Whether some lane may enter the cube within `span`: never false
+    /// when a lane's own crossings enter it (each lane's latest near
     /// crossing is no earlier, its earliest far one no later).
     #[inline(always)]
-    pub(super) fn entered(self, floor: f32) -> bool {
+    pub(super) fn entered(self, span: Span) -> bool {
         let far = self.far.min_element();
-        self.near.max_element() <= far && far >= floor
+        self.near.max_element() <= far.min(span.ceiling) && far >= span.floor
     }
 }
 
@@ -300,15 +261,16 @@ pub(super) fn crossings<O: Origins>(packet: &Packet<O>, axis: usize, plane: f32)
     packet.origins.crossings(&packet.inv[axis], axis, plane)
 }
 
-/// The lanes of `lanes` (bits) whose ray may enter the cube of `slabs` at
-/// or after the clear distance: those whose latest near crossing is no
-/// later than their earliest far one, which is at least `floor`
-/// ([`Packet::floor`]). Never leaves out a lane that visits one of the
-/// cube's cells. Only the four-lane groups holding one of `lanes` are
-/// computed: a voxel of a far terrain covers few of a packet's pixels.
+/// The lanes of `lanes` (bits) whose ray may enter the cube of `slabs`
+/// at or after the span's floor: those whose latest near crossing is no
+/// later than their earliest far one, which is at least the floor. Never
+/// leaves out a lane that visits one of the cube's cells. (The span's
+/// ceiling is left to [`visiting`] and the hull: most packets have none.)
+/// Only the four-lane groups holding one of `lanes` are computed: a voxel
+/// of a far terrain covers few of a packet's pixels.
 #[inline(always)]
-pub(super) fn entering(slabs: &Slabs, floor: f32, lanes: u32) -> u32 {
-    let floor = Vec4::splat(floor);
+pub(super) fn entering(slabs: &Slabs, span: Span, lanes: u32) -> u32 {
+    let floor = Vec4::splat(span.floor);
     let mut entered = 0;
     for k in quads(lanes) {
         let (near, far) = latest_and_earliest(slabs, k);
@@ -350,9 +312,11 @@ pub(super) struct Visits {
 
 /// [`Visits`] of the voxel whose crossings are `slabs`, for the lanes of
 /// `lanes` (the groups of four holding none are left out: their bits
-/// clear, their entries 0).
+/// clear, their entries 0). A lane entering it after `ceiling` neither
+/// visits it nor ties: its hit would be out of reach, as would every
+/// voxel's behind it.
 #[inline(always)]
-pub(super) fn visiting(slabs: &Slabs, lanes: u32) -> Visits {
+pub(super) fn visiting(slabs: &Slabs, lanes: u32, ceiling: f32) -> Visits {
     let mut visits = Visits {
         sure: 0,
         tied: 0,
@@ -360,12 +324,15 @@ pub(super) fn visiting(slabs: &Slabs, lanes: u32) -> Visits {
         through_z: 0,
         through_y: 0,
     };
+    let ceiling = Vec4::splat(ceiling);
     for k in quads(lanes) {
         let (near, far) = latest_and_earliest(slabs, k);
         let ahead: BVec4A = near.cmpgt(Vec4::ZERO);
+        let within = near.cmple(ceiling);
         let shift = 4 * k;
-        visits.sure |= (near.cmplt(far) & ahead).bitmask() << shift;
-        visits.tied |= (near.cmpeq(far) | (near.cmple(far) & !ahead)).bitmask() << shift;
+        visits.sure |= (near.cmplt(far) & ahead & within).bitmask() << shift;
+        let tied = near.cmpeq(far) | (near.cmple(far) & !ahead);
+        visits.tied |= (tied & within).bitmask() << shift;
         visits.entry[k] = near;
         visits.through_z |= slabs.near[2][k].cmpeq(near).bitmask() << shift;
         visits.through_y |= slabs.near[1][k].cmpeq(near).bitmask() << shift;
