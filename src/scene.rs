@@ -251,6 +251,40 @@ pub trait Scene {
         0
     }
 
+    /// The hits of the lanes of `rays` whose bits are set in `lanes`,
+    /// each over `reach`, into `hits` (other lanes untouched): exactly
+    /// what [`Scene::trace_with`] gives each, found in a packet where the
+    /// storage can ([`Scene::trace_packet`]), the rest one by one, their
+    /// walks beginning from `memory`. A reach clear forever hits nothing:
+    /// no ray is traced.
+    #[inline]
+    fn trace_lanes<'s>(
+        &'s self,
+        rays: &[Ray; PACKET],
+        lanes: u32,
+        reach: Reach,
+        memory: &mut WalkMemory<'s>,
+        hits: &mut [Option<Hit>; PACKET],
+    ) {
+        let mut alone = lanes;
+        if reach.clear == f32::INFINITY {
+            alone = 0;
+            for (i, hit) in hits.iter_mut().enumerate() {
+                if lanes >> i & 1 != 0 {
+                    *hit = None;
+                }
+            }
+        } else if lanes != 0 {
+            alone &= !self.trace_packet(rays, lanes, reach, hits);
+        }
+        // The lanes the packet left, lowest first.
+        while alone != 0 {
+            let i = alone.trailing_zeros() as usize;
+            alone &= alone - 1;
+            hits[i] = self.trace_with(&rays[i], reach, memory, None).hit;
+        }
+    }
+
     /// Bytes of voxel storage this scene holds (arrays and palette).
     fn storage_bytes(&self) -> usize;
 

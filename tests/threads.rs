@@ -11,8 +11,8 @@ use voxtrace::glam::{IVec3, Vec3};
 use voxtrace::rayon::prelude::*;
 use voxtrace::rayon::{ThreadPool, ThreadPoolBuilder};
 use voxtrace::{
-    render_parallel, render_region, Camera, DenseScene, Error, Fog, Framebuffer, IAabb, Occlusion,
-    OctreeScene, RayStats, Rect, RenderOptions, Scene, VoxelGenerator,
+    render_parallel, render_pixel, render_region, Camera, DenseScene, Error, Fog, Framebuffer,
+    IAabb, Occlusion, OctreeScene, RayStats, Rect, RenderOptions, Scene, VoxelGenerator,
 };
 
 fn pool(threads: usize) -> ThreadPool {
@@ -80,6 +80,18 @@ fn threaded_renders_equal_the_scalar_render_for_1_2_3_and_8_threads() {
                 assert_eq!(octree_stats, dense_stats, "{options:?}");
             }
             hits += dense_stats.primary_hits;
+            // Each pixel is the one `render_pixel` defines, alone: the
+            // octree's frame traces its rays in packets (camera rays, and
+            // the shadow and occlusion rays of every sample), so this
+            // holds packets to the one-ray walks.
+            if !options.debug {
+                let width = camera.width() as usize;
+                for (i, &pixel) in octree_pixels.iter().enumerate().step_by(5) {
+                    let (x, y) = ((i % width) as u32, (i / width) as u32);
+                    let alone = render_pixel(&octree, camera, &options, x, y).0;
+                    assert_eq!(pixel, alone, "pixel ({x}, {y}), {options:?}");
+                }
+            }
             let scenes: [(&(dyn Scene + Sync), &Vec<u32>, RayStats); 2] = [
                 (&dense, &dense_pixels, dense_stats),
                 (&octree, &octree_pixels, octree_stats),

@@ -13,7 +13,7 @@ use crate::render::view::{basis, unit, Projection};
 #[cfg(feature = "packets")]
 mod block;
 #[cfg(feature = "packets")]
-pub(crate) use block::{BLOCK_HEIGHT, BLOCK_WIDTH};
+pub(crate) use block::{block_pixel, BLOCK_HEIGHT, BLOCK_WIDTH};
 
 /// The seven camera parameters of the seed paper.
 #[derive(Clone, Copy, Debug, PartialEq)]

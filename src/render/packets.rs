@@ -1,13 +1,13 @@
-//! Primary rays in packets: a tile's pixels, for a kernel whose pixels
-//! are one ray each ([`Kernel::one_ray`]), traced 32 at a time, an 8x4
-//! block per packet ([`Scene::trace_packet`]); the lanes a packet leaves
-//! walk alone, and every hit goes to the kernel's [`Kernel::shade`], so
-//! each pixel is the one [`Kernel::pixel`] gives.
+//! Camera rays in packets: a tile's pixels, for a kernel that makes them
+//! 8x4 at a time ([`Kernel::in_blocks`]), handed to the kernel a block at
+//! a time ([`Kernel::block`]), which traces the block's camera rays as
+//! packets ([`crate::Scene::trace_lanes`]); every pixel is the one
+//! [`Kernel::pixel`] gives.
 
 use crate::render::camera::{Camera, BLOCK_HEIGHT, BLOCK_WIDTH};
 use crate::render::shader::Kernel;
 use crate::render::stats::{RayStats, Rect};
-use crate::scene::{Reach, Scene, WalkMemory, PACKET};
+use crate::scene::{Scene, WalkMemory};
 
 /// Width of a tile whose rays go in packets (its height stays `TILE`,
 /// the threaded renderer's band): a packet's own walk shares the empty
@@ -36,10 +36,9 @@ pub(super) fn packets_pay(camera: &Camera, t_start: f32) -> bool {
 }
 
 /// The pixels of `tile` (of `rect`; the tile's corner and size are
-/// offsets inside `rect`) for a [`Kernel::one_ray`] kernel: its whole 8x4
-/// blocks traced as packets (or, clear forever, all misses), the lanes a
-/// packet leaves and the pixels of partial blocks one ray at a time, each
-/// shaded by the kernel, handed to `put(dx, dy, rgba)` at their offsets
+/// offsets inside `rect`) for a [`Kernel::in_blocks`] kernel: its whole
+/// 8x4 blocks by [`Kernel::block`], the pixels of partial blocks by
+/// [`Kernel::pixel`], handed to `put(dx, dy, rgba)` at their offsets
 /// inside `rect`.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
@@ -70,36 +69,9 @@ pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
                 }
                 continue;
             }
-            let (x, y) = (rect.x.wrapping_add(bx), rect.y.wrapping_add(by));
-            let rays = camera.block_rays(x, y);
-            let mut hits = [None; PACKET];
-            // Clear forever: every ray misses (the promise of `t_start`).
-            // Clear for no distance: the camera touches a solid voxel,
-            // where a packet's lanes would mostly go back undecided; they
-            // walk alone.
-            let answered = if t_start == f32::INFINITY {
-                u32::MAX
-            } else if t_start == 0.0 {
-                0
-            } else {
-                scene.trace_packet(&rays, u32::MAX, Reach::after(t_start), &mut hits)
-            };
-            // The lanes the packet left, lowest first.
-            let mut alone = !answered;
-            while alone != 0 {
-                let i = alone.trailing_zeros() as usize;
-                alone &= alone - 1;
-                hits[i] = scene
-                    .trace_with(&rays[i], Reach::after(t_start), memory, None)
-                    .hit;
-            }
-            let lane = |i: usize| (i as u32 % BLOCK_WIDTH, i as u32 / BLOCK_WIDTH);
-            let at = |i| {
-                let (dx, dy) = lane(i);
-                (x.wrapping_add(dx), y.wrapping_add(dy))
-            };
-            kernel.shade_packet(scene, (&rays, &hits), at, memory, |i, rgba, rays| {
-                let (dx, dy) = lane(i);
+            let corner = (rect.x.wrapping_add(bx), rect.y.wrapping_add(by));
+            kernel.block(scene, camera, corner, t_start, memory, |i, rgba, rays| {
+                let (dx, dy) = (i as u32 % BLOCK_WIDTH, i as u32 / BLOCK_WIDTH);
                 put(bx + dx, by + dy, rgba);
                 *stats += rays;
             });

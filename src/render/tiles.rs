@@ -32,7 +32,7 @@ pub(crate) const TILE: u32 = 16;
 /// kernel whose rays go in packets.
 fn tile_width(kernel: &impl Kernel) -> u32 {
     #[cfg(feature = "packets")]
-    if kernel.one_ray() {
+    if kernel.in_blocks() {
         return PACKET_TILE;
     }
     let _ = kernel;
@@ -76,7 +76,7 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
                 height: dy1 - dy0,
             };
             #[cfg(feature = "packets")]
-            if kernel.one_ray() && beam && packets_pay(camera, t_start) {
+            if kernel.in_blocks() && beam && packets_pay(camera, t_start) {
                 let memory = &mut memory;
                 in_packets(
                     kernel, scene, camera, rect, offsets, t_start, memory, &mut put, &mut stats,

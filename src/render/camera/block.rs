@@ -15,6 +15,15 @@ pub(crate) const BLOCK_WIDTH: u32 = 8;
 pub(crate) const BLOCK_HEIGHT: u32 = 4;
 const _: () = assert!((BLOCK_WIDTH * BLOCK_HEIGHT) as usize == PACKET);
 
+/// The pixel of lane `lane` of the block from `corner`: rows of
+/// [`BLOCK_WIDTH`].
+#[inline]
+pub(crate) fn block_pixel(corner: (u32, u32), lane: usize) -> (u32, u32) {
+    let lane = lane as u32;
+    let (dx, dy) = (lane % BLOCK_WIDTH, lane / BLOCK_WIDTH);
+    (corner.0.wrapping_add(dx), corner.1.wrapping_add(dy))
+}
+
 impl Camera {
     /// The rays through the centers of the 8x4 pixels from `(i, j)`: lane
     /// `k` is pixel `(i + k % 8, j + k / 8)`'s, bit for bit the ray

@@ -175,7 +175,8 @@ impl Kernel for Flat<'_, '_, '_> {
         self.ray_pixel(scene, &ray, (x, y), t_start, memory)
     }
 
-    fn one_ray(&self) -> bool {
+    #[cfg(feature = "packets")]
+    fn in_blocks(&self) -> bool {
         true
     }
 

@@ -6,6 +6,8 @@
 use glam::{U8Vec3, UVec3};
 
 use crate::geom::{Face, Ray};
+#[cfg(feature = "packets")]
+use crate::render::camera::{block_pixel, Camera};
 use crate::render::options::Background;
 use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
@@ -50,37 +52,25 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         t_start: f32,
         memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats) {
-        let camera = self.0.camera;
         if self.one_ray() {
-            let ray = camera.get_ray(x, y);
+            let ray = self.0.camera.get_ray(x, y);
             return self.ray_pixel(scene, &ray, (x, y), t_start, memory);
         }
-        let samples = u32::from(self.0.options.samples);
-        let transparent = self.0.options.background == Background::Transparent;
-        let key = pixel_key(x, y, 0);
-        let mut sum = UVec3::ZERO;
-        let mut stats = RayStats::default();
-        for s in 0..samples {
-            let offset = r2(s, key);
-            let ray = camera.get_ray_at(x as f32 + offset.x, y as f32 + offset.y);
-            let (color, rays) = self.sample(scene, &ray, t_start, x, y, s, memory);
-            if rays.primary_hits > 0 {
-                sum += color.as_uvec3();
-            } else if !transparent {
-                sum += self.0.miss_color(color).as_uvec3();
-            }
-            stats += rays;
+        let mut mean = Mean::default();
+        for s in 0..self.samples() {
+            let ray = self.sample_ray((x, y), s);
+            let hit = scene
+                .trace_with(&ray, Reach::after(t_start), memory, None)
+                .hit;
+            let shaded = self.shade_sample(scene, &ray, hit, (x, y, s), memory, Found::default());
+            mean.add(shaded, self.0);
         }
-        // The rounded mean, in integers.
-        let mean_of = |n: u32| ((sum + UVec3::splat(n / 2)) / n).as_u8vec3();
-        let hits = stats.primary_hits as u32;
-        (pack_mean(samples, hits, transparent, mean_of), stats)
+        mean.pixel(self.samples(), self.0)
     }
 
-    /// One sample per pixel (occlusion and fog test their settings
-    /// anyway).
-    fn one_ray(&self) -> bool {
-        !(AA && (EXACT || self.0.options.samples > 1))
+    #[cfg(feature = "packets")]
+    fn in_blocks(&self) -> bool {
+        true
     }
 
     #[inline]
@@ -96,25 +86,80 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         self.packed(shaded)
     }
 
-    /// The lanes' shadow and occlusion rays traced in packets
+    /// Sample by sample: the block's camera rays as a packet, then their
+    /// hits' shadow and occlusion rays in packets
     /// ([`Lit::secondary_in_packets`]), then each lane shaded.
     #[cfg(feature = "packets")]
     #[inline]
-    fn shade_packet<'s, S: Scene + ?Sized>(
+    fn block<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
-        (rays, hits): (&[Ray; PACKET], &[Option<Hit>; PACKET]),
-        at: impl Fn(usize) -> (u32, u32),
+        camera: &Camera,
+        corner: (u32, u32),
+        t_start: f32,
         memory: &mut WalkMemory<'s>,
         mut put: impl FnMut(usize, u32, RayStats),
     ) {
-        let found = self.secondary_in_packets(scene, (rays, hits), &at, memory);
-        for (i, (ray, &hit)) in rays.iter().zip(hits).enumerate() {
-            let (x, y) = at(i);
-            let shaded = self.shade_sample(scene, ray, hit, (x, y, 0), memory, found[i]);
-            let (rgba, rays) = self.packed(shaded);
-            put(i, rgba, rays);
+        let at = |i| block_pixel(corner, i);
+        let one_ray = self.one_ray();
+        let mut means = [Mean::default(); PACKET];
+        for s in 0..self.samples() {
+            let rays = if one_ray {
+                camera.block_rays(corner.0, corner.1)
+            } else {
+                core::array::from_fn(|i| self.sample_ray(at(i), s))
+            };
+            let mut hits = [None; PACKET];
+            scene.trace_lanes(&rays, u32::MAX, Reach::after(t_start), memory, &mut hits);
+            let found = self.secondary_in_packets(scene, (&rays, &hits), s, &at, memory);
+            for (i, (ray, &hit)) in rays.iter().zip(&hits).enumerate() {
+                let (x, y) = at(i);
+                let shaded = self.shade_sample(scene, ray, hit, (x, y, s), memory, found[i]);
+                if one_ray {
+                    let (rgba, rays) = self.packed(shaded);
+                    put(i, rgba, rays);
+                } else {
+                    means[i].add(shaded, self.0);
+                }
+            }
         }
+        if !one_ray {
+            for (i, mean) in means.iter().enumerate() {
+                let (rgba, rays) = mean.pixel(self.samples(), self.0);
+                put(i, rgba, rays);
+            }
+        }
+    }
+}
+
+/// A pixel's samples so far: their colors summed (a miss as the
+/// background's, none for a transparent one) and their rays.
+#[derive(Clone, Copy, Default)]
+struct Mean {
+    sum: UVec3,
+    stats: RayStats,
+}
+
+impl Mean {
+    /// Adds a sample: its color and rays ([`Lit::shade_sample`]).
+    #[inline]
+    fn add(&mut self, (color, rays): (U8Vec3, RayStats), shader: &Shader) {
+        if rays.primary_hits > 0 {
+            self.sum += color.as_uvec3();
+        } else if shader.options.background != Background::Transparent {
+            self.sum += shader.miss_color(color).as_uvec3();
+        }
+        self.stats += rays;
+    }
+
+    /// The pixel of `samples` samples: their rounded mean, in integers,
+    /// packed, and their rays.
+    #[inline]
+    fn pixel(&self, samples: u32, shader: &Shader) -> (u32, RayStats) {
+        let transparent = shader.options.background == Background::Transparent;
+        let mean_of = |n: u32| ((self.sum + UVec3::splat(n / 2)) / n).as_u8vec3();
+        let hits = self.stats.primary_hits as u32;
+        (pack_mean(samples, hits, transparent, mean_of), self.stats)
     }
 }
 
@@ -131,24 +176,31 @@ pub(super) struct Found {
 impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const EXACT: bool>
     Lit<'_, '_, '_, SHADOWS, AO, FOG, AA, EXACT>
 {
-    /// One camera sample, its walk starting at `t_start`: its color (the
-    /// sky's when it misses: `primary_hits` is then 0) and rays.
-    #[allow(clippy::too_many_arguments)]
+    /// One sample per pixel (occlusion and fog test their settings
+    /// anyway).
     #[inline]
-    fn sample<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        ray: &Ray,
-        t_start: f32,
-        x: u32,
-        y: u32,
-        sample: u32,
-        memory: &mut WalkMemory<'s>,
-    ) -> (U8Vec3, RayStats) {
-        let hit = scene
-            .trace_with(ray, Reach::after(t_start), memory, None)
-            .hit;
-        self.shade_sample(scene, ray, hit, (x, y, sample), memory, Found::default())
+    fn one_ray(&self) -> bool {
+        !(AA && (EXACT || self.0.options.samples > 1))
+    }
+
+    /// Camera samples per pixel.
+    #[inline]
+    fn samples(&self) -> u32 {
+        if self.one_ray() {
+            1
+        } else {
+            u32::from(self.0.options.samples)
+        }
+    }
+
+    /// Sample `s`'s camera ray of pixel `(x, y)` in a frame of several
+    /// samples per pixel: through a point of the pixel's own sequence.
+    #[inline]
+    fn sample_ray(&self, (x, y): (u32, u32), s: u32) -> Ray {
+        let offset = r2(s, pixel_key(x, y, 0));
+        self.0
+            .camera
+            .get_ray_at(x as f32 + offset.x, y as f32 + offset.y)
     }
 
     /// Whether the frame's hits send shadow rays.

@@ -29,6 +29,8 @@ use crate::geom::Ray;
 #[cfg(feature = "path")]
 use crate::material::Materials;
 use crate::material::SceneMaterials;
+#[cfg(feature = "packets")]
+use crate::render::camera::block_pixel;
 use crate::render::camera::Camera;
 use crate::render::options::{Background, RenderOptions};
 #[cfg(feature = "path")]
@@ -156,18 +158,16 @@ pub(crate) trait Kernel: Sync {
         true
     }
 
-    /// Whether pixel `(x, y)` is one primary ray, the camera's
-    /// `get_ray(x, y)` over the tile's clear distance, and
-    /// [`Kernel::shade`] of its hit: then tiles trace their pixels' rays
-    /// in packets ([`Scene::trace_packet`]).
-    fn one_ray(&self) -> bool {
+    /// Whether the kernel makes its pixels 8x4 at a time
+    /// ([`Kernel::block`]): then tiles trace their camera rays in packets.
+    #[cfg(feature = "packets")]
+    fn in_blocks(&self) -> bool {
         false
     }
 
-    /// Pixel `(x, y)` of a [`Kernel::one_ray`] kernel from its primary
-    /// ray `ray` (the camera's `get_ray(x, y)`, however computed): the ray
-    /// walked alone from `t_start`, its hit shaded. The same pixel and
-    /// rays as [`Kernel::pixel`], which is this of `get_ray(x, y)`.
+    /// Pixel `(x, y)` of a kernel whose pixel is one camera ray (the
+    /// camera's `get_ray(x, y)`, however computed) and [`Kernel::shade`]
+    /// of its hit: the ray walked alone from `t_start`, its hit shaded.
     #[inline]
     fn ray_pixel<'s, S: Scene + ?Sized>(
         &self,
@@ -183,10 +183,10 @@ pub(crate) trait Kernel: Sync {
         self.shade(scene, ray, hit, (x, y), memory)
     }
 
-    /// Pixel `(x, y)` of a kernel whose pixels are [`Kernel::one_ray`],
-    /// given its primary ray and that ray's hit: the same pixel and rays
-    /// as [`Kernel::pixel`]. The default (for kernels whose pixels are
-    /// not one ray) traces the pixel again.
+    /// Pixel `(x, y)` of a kernel whose pixel is one camera ray, given
+    /// that ray and its hit: the same pixel and rays as [`Kernel::pixel`].
+    /// The default (for kernels whose pixels are not one ray) traces the
+    /// pixel again.
     fn shade<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
@@ -199,23 +199,28 @@ pub(crate) trait Kernel: Sync {
         self.pixel(scene, x, y, 0.0, memory)
     }
 
-    /// [`Kernel::shade`] of a packet's lanes: `put(i, rgba, rays)` gets
-    /// lane `i`'s pixel (at `at(i)`, of the primary ray `rays[i]` whose
-    /// hit is `hits[i]`), the same pixel and rays as [`Kernel::pixel`].
-    /// What lets a kernel trace the secondary rays of neighbouring hits
-    /// together; the default shades lane by lane.
+    /// The pixels of the 8x4 block from `corner` (lane `i` at
+    /// [`block_pixel`]`(corner, i)`), handed to `put(i, rgba, rays)`: the
+    /// pixels and rays [`Kernel::pixel`] gives, their camera rays traced
+    /// as a packet ([`Scene::trace_lanes`]), whose rays hit nothing before
+    /// `t_start`. The default is for a kernel whose pixel is one camera
+    /// ray through its center and [`Kernel::shade`] of its hit.
     #[cfg(feature = "packets")]
     #[inline]
-    fn shade_packet<'s, S: Scene + ?Sized>(
+    fn block<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
-        (rays, hits): (&[Ray; PACKET], &[Option<Hit>; PACKET]),
-        at: impl Fn(usize) -> (u32, u32),
+        camera: &Camera,
+        corner: (u32, u32),
+        t_start: f32,
         memory: &mut WalkMemory<'s>,
         mut put: impl FnMut(usize, u32, RayStats),
     ) {
-        for (i, (ray, &hit)) in rays.iter().zip(hits).enumerate() {
-            let (rgba, rays) = self.shade(scene, ray, hit, at(i), memory);
+        let rays = camera.block_rays(corner.0, corner.1);
+        let mut hits = [None; PACKET];
+        scene.trace_lanes(&rays, u32::MAX, Reach::after(t_start), memory, &mut hits);
+        for (i, (ray, &hit)) in rays.iter().zip(&hits).enumerate() {
+            let (rgba, rays) = self.shade(scene, ray, hit, block_pixel(corner, i), memory);
             put(i, rgba, rays);
         }
     }

@@ -4,9 +4,9 @@
 //! parallel and start at neighbouring hits: one packet. Occlusion rays
 //! scatter over each face's hemisphere, so they are gathered by the
 //! octant they point into (a packet's lanes share their signs), each
-//! octant's bin traced whenever it holds a packet. Every lane a packet
-//! leaves is traced alone, as [`Lit::shade_sample`] would: the answers
-//! are the same, bit for bit, whichever way they were found.
+//! octant's bin traced whenever it holds a packet. The lanes a packet
+//! leaves are traced alone ([`Scene::trace_lanes`]): the answers are
+//! [`Lit::shade_sample`]'s, whichever way they were found.
 
 use glam::Vec3A;
 
@@ -28,13 +28,15 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
     Lit<'_, '_, '_, SHADOWS, AO, FOG, AA, EXACT>
 {
     /// What the secondary rays of each lane's hit (`hits[i]`, of the
-    /// camera ray `rays[i]` of pixel `at(i)`) find: their shadow rays as
-    /// one packet, their occlusion rays in packets by octant.
+    /// camera ray `rays[i]` of sample `sample` of pixel `at(i)`) find:
+    /// their shadow rays as one packet, their occlusion rays in packets
+    /// by octant.
     #[inline]
     pub(super) fn secondary_in_packets<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
         (rays, hits): (&[Ray; PACKET], &[Option<Hit>; PACKET]),
+        sample: u32,
         at: &impl Fn(usize) -> (u32, u32),
         memory: &mut WalkMemory<'s>,
     ) -> [Found; PACKET] {
@@ -47,10 +49,18 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
                     lanes |= 1 << i;
                 }
             }
+            // From the camera rays' memory (a copy: the next block's
+            // camera rays begin from it).
             let mut blockers = [None; PACKET];
-            let answered = scene.trace_packet(&shadows, lanes, Reach::ALL, &mut blockers);
+            scene.trace_lanes(
+                &shadows,
+                lanes,
+                Reach::ALL,
+                &mut memory.clone(),
+                &mut blockers,
+            );
             for (i, found) in found.iter_mut().enumerate() {
-                if answered >> i & 1 != 0 {
+                if lanes >> i & 1 != 0 {
                     found.blocked = Some(blockers[i].is_some());
                 }
             }
@@ -70,7 +80,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
                 };
                 found[i].open = Some(0);
                 let (x, y) = at(i);
-                let key = pixel_key(x, y, 1);
+                let key = pixel_key(x, y, 1 + sample);
                 for j in 0..u32::from(ao.rays) {
                     let Some(r) = occlusion_ray(ray, hit, entered, key, j) else {
                         open[i] += 1;
@@ -95,9 +105,9 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
     }
 }
 
-/// Traces the occlusion rays of `bin` as a packet over `reach`, each ray
-/// the packet leaves alone, and empties it: `open[lane]` counts the rays
-/// of `lane` that meet nothing.
+/// Traces the occlusion rays of `bin` over `reach` ([`Scene::trace_lanes`])
+/// and empties it: `open[lane]` counts the rays of `lane` that meet
+/// nothing.
 fn trace_bin<'s, S: Scene + ?Sized>(
     scene: &'s S,
     bin: &mut Bin,
@@ -110,15 +120,9 @@ fn trace_bin<'s, S: Scene + ?Sized>(
     }
     let lanes = u32::MAX >> (PACKET - bin.len);
     let mut hits = [None; PACKET];
-    let answered = scene.trace_packet(&bin.rays, lanes, reach, &mut hits);
-    for (lane, ray) in bin.rays[..bin.len].iter().enumerate() {
-        let blocked = if answered >> lane & 1 != 0 {
-            hits[lane].is_some()
-        } else {
-            let memory = &mut memory.clone();
-            scene.trace_with(ray, reach, memory, None).hit.is_some()
-        };
-        open[usize::from(bin.owners[lane])] += u32::from(!blocked);
+    scene.trace_lanes(&bin.rays, lanes, reach, &mut memory.clone(), &mut hits);
+    for (hit, &owner) in hits.iter().zip(&bin.owners).take(bin.len) {
+        open[usize::from(owner)] += u32::from(hit.is_none());
     }
     bin.len = 0;
 }
