@@ -49,7 +49,8 @@ impl Hit {
     }
 }
 
-/// Rays in a packet ([`Scene::trace_packet`]): an 8x4 block of pixels.
+/// Rays in a packet ([`Scene::trace_packet`], [`Scene::trace_lanes`]):
+/// an 8x4 block of a camera's pixels, or rays their hits send on.
 pub const PACKET: usize = 32;
 
 /// A hit (or miss) together with the number of walk moves it took.

@@ -142,8 +142,8 @@ pub fn render<S: Scene + ?Sized>(
 }
 
 /// Renders the crop `region` into `out` as [`render_region`] does, its
-/// samples taken in rounds over the whole crop
-/// ([`crate::render::rounds`]): after each round every pixel of `out`
+/// samples taken in rounds over the whole crop ([`crate::Rounds`]):
+/// after each round every pixel of `out`
 /// holds its value so far, and `keep_going(n)`, asked after round `n`
 /// while a pixel is left that is not done, says whether round `n + 1`
 /// begins (round 1 always runs). The crop after `n` rounds is byte for
