@@ -1,14 +1,13 @@
 //! A camera's rays for an 8x4 block of pixels, four at a time: the
 //! packets the tiles trace ([`crate::Scene::trace_packet`]).
 
-use glam::{Vec3A, Vec4};
+use glam::{Vec2, Vec3A, Vec4};
 
 use crate::geom::Ray;
 use crate::math::per_axis;
 use crate::render::camera::Camera;
 use crate::scene::PACKET;
 
-/// Side of a block of pixels: [`PACKET`] rays.
 /// Width of a block of pixels.
 pub(crate) const BLOCK_WIDTH: u32 = 8;
 /// Height of a block of pixels: [`PACKET`] rays in all.
@@ -27,26 +26,75 @@ pub(crate) fn block_pixel(corner: (u32, u32), lane: usize) -> (u32, u32) {
 impl Camera {
     /// The rays through the centers of the 8x4 pixels from `(i, j)`: lane
     /// `k` is pixel `(i + k % 8, j + k / 8)`'s, bit for bit the ray
-    /// [`Camera::get_ray`] gives it. Four rays are computed at once,
-    /// lane by lane with [`Ray::new`]'s operations in its order, so the
-    /// divisions and square roots that bound a lone ray's time overlap.
+    /// [`Camera::get_ray`] gives it.
     #[must_use]
     pub(crate) fn block_rays(&self, i: u32, j: u32) -> [Ray; PACKET] {
+        self.rays_through(
+            |k| {
+                let (x, y) = block_pixel((i, j), k);
+                (x as f32, y as f32)
+            },
+            |k| {
+                let (x, y) = block_pixel((i, j), k);
+                self.get_ray(x, y)
+            },
+        )
+    }
+
+    /// The rays of one sample of each of the 8x4 pixels from `corner`:
+    /// lane `k`'s through the point `offset(k)` of its pixel
+    /// ([`block_pixel`]), bit for bit the ray [`Camera::get_ray_at`] gives
+    /// it.
+    #[must_use]
+    pub(crate) fn block_sample_rays(
+        &self,
+        corner: (u32, u32),
+        offset: impl Fn(usize) -> Vec2,
+    ) -> [Ray; PACKET] {
+        // `get_ray_at`'s continuous coordinates, and their point's offset
+        // from pixel (0, 0)'s center, in its order.
+        let at = |k| {
+            let (x, y) = block_pixel(corner, k);
+            let offset = offset(k);
+            (x as f32 + offset.x, y as f32 + offset.y)
+        };
+        self.rays_through(
+            |k| {
+                let (x, y) = at(k);
+                (x - 0.5, y - 0.5)
+            },
+            |k| {
+                let (x, y) = at(k);
+                self.get_ray_at(x, y)
+            },
+        )
+    }
+
+    /// The rays from the camera through the image-plane points
+    /// `pixel00 + delta_u * x + delta_v * y` of `(x, y) = point(k)`, lane
+    /// by lane; `lone(k)`, the same ray computed alone, where the camera
+    /// is orthographic or a lane's direction is unusable. Four rays are
+    /// computed at once, with [`Ray::new`]'s operations in its order, so
+    /// the divisions and square roots that bound a lone ray's time
+    /// overlap.
+    #[inline]
+    fn rays_through(
+        &self,
+        point: impl Fn(usize) -> (f32, f32),
+        lone: impl Fn(usize) -> Ray,
+    ) -> [Ray; PACKET] {
         let mut rays = [self.forward; PACKET];
-        for quad in 0..PACKET as u32 / 4 {
-            let quads_per_row = BLOCK_WIDTH / 4;
-            let (row, half) = (quad / quads_per_row, quad % quads_per_row);
-            let y = j.wrapping_add(row);
-            let columns = [0, 1, 2, 3].map(|dx| i.wrapping_add(half * 4 + dx));
-            let lanes = &mut rays[(quad * 4) as usize..][..4];
+        for quad in 0..PACKET / 4 {
+            let lanes = &mut rays[quad * 4..][..4];
             if self.orthographic {
-                for (ray, x) in lanes.iter_mut().zip(columns) {
-                    *ray = self.get_ray(x, y);
+                for (lane, ray) in lanes.iter_mut().enumerate() {
+                    *ray = lone(quad * 4 + lane);
                 }
                 continue;
             }
-            let x = Vec4::from_array(columns.map(|x| x as f32));
-            let y = Vec4::splat(y as f32);
+            let points: [(f32, f32); 4] = core::array::from_fn(|lane| point(quad * 4 + lane));
+            let x = Vec4::from_array(points.map(|p| p.0));
+            let y = Vec4::from_array(points.map(|p| p.1));
             // Per axis: the image-plane point minus the camera's position.
             let to_pixel = per_axis(|axis| {
                 let corner = Vec4::splat(self.pixel00[axis]);
@@ -70,7 +118,7 @@ impl Camera {
                     Ray::from_parts(self.center, of(dir), of(inv))
                 } else {
                     // The lone ray's own fallback.
-                    self.get_ray(columns[lane], j.wrapping_add(row))
+                    lone(quad * 4 + lane)
                 };
             }
         }
@@ -80,9 +128,10 @@ impl Camera {
 
 #[cfg(test)]
 mod tests {
-    use glam::Vec3;
+    use glam::{Vec2, Vec3};
     use proptest::prelude::*;
 
+    use super::block_pixel;
     use crate::render::camera::{Camera, CameraSettings};
     use crate::render::view::Projection;
 
@@ -120,6 +169,46 @@ mod tests {
             for (k, ray) in rays.iter().enumerate() {
                 let (x, y) = (i.wrapping_add(k as u32 % 8), j.wrapping_add(k as u32 / 8));
                 let lone = camera.get_ray(x, y);
+                let bits = |r: &crate::geom::Ray| {
+                    let (o, d, inv) = r.lanes();
+                    [o, d, inv].map(|v| v.to_array().map(f32::to_bits))
+                };
+                prop_assert_eq!(bits(ray), bits(&lone), "pixel ({}, {})", x, y);
+            }
+        }
+
+        /// Every lane of a block of sample rays is the lone ray through
+        /// its point, bit for bit, for any points of the pixels.
+        #[test]
+        fn a_blocks_sample_rays_are_the_lone_rays(
+            from in prop::array::uniform3(-3000.0f32..3000.0),
+            at in prop::array::uniform3(-50.0f32..50.0),
+            fov in 1.0f32..170.0,
+            size in (1u32..5000, 1u32..5000),
+            block in (any::<u32>(), any::<u32>()),
+            offsets in prop::array::uniform32((0.0f32..1.0, 0.0f32..1.0)),
+            ortho in prop::option::of(0.5f32..500.0),
+        ) {
+            let settings = CameraSettings {
+                width: size.0,
+                height: size.1,
+                vertical_fov: fov,
+                lookfrom: Vec3::from(from),
+                lookat: Vec3::from(at),
+                projection: ortho.map_or(Projection::Perspective, |height| {
+                    Projection::Orthographic { height }
+                }),
+                ..CameraSettings::default()
+            };
+            let Ok(camera) = Camera::new(settings) else {
+                return Ok(());
+            };
+            let corner = (block.0 % (size.0 + 8), block.1 % (size.1 + 8));
+            let offset = |k: usize| Vec2::new(offsets[k].0, offsets[k].1);
+            let rays = camera.block_sample_rays(corner, offset);
+            for (k, ray) in rays.iter().enumerate() {
+                let (x, y) = block_pixel(corner, k);
+                let lone = camera.get_ray_at(x as f32 + offset(k).x, y as f32 + offset(k).y);
                 let bits = |r: &crate::geom::Ray| {
                     let (o, d, inv) = r.lanes();
                     [o, d, inv].map(|v| v.to_array().map(f32::to_bits))

@@ -3,7 +3,7 @@
 //! camera rays sends its hits' shadow and occlusion rays in packets too
 //! (`packets.rs`).
 
-use glam::{U8Vec3, UVec3};
+use glam::{U8Vec3, UVec3, Vec2};
 
 use crate::geom::{Face, Ray};
 #[cfg(feature = "packets")]
@@ -58,7 +58,11 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         }
         let mut mean = Mean::default();
         for s in 0..self.samples() {
-            let ray = self.sample_ray((x, y), s);
+            let offset = sample_offset((x, y), s);
+            let ray = self
+                .0
+                .camera
+                .get_ray_at(x as f32 + offset.x, y as f32 + offset.y);
             let hit = scene
                 .trace_with(&ray, Reach::after(t_start), memory, None)
                 .hit;
@@ -107,7 +111,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
             let rays = if one_ray {
                 camera.block_rays(corner.0, corner.1)
             } else {
-                core::array::from_fn(|i| self.sample_ray(at(i), s))
+                camera.block_sample_rays(corner, |i| sample_offset(at(i), s))
             };
             let mut hits = [None; PACKET];
             scene.trace_lanes(&rays, u32::MAX, Reach::after(t_start), memory, &mut hits);
@@ -191,16 +195,6 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         } else {
             u32::from(self.0.options.samples)
         }
-    }
-
-    /// Sample `s`'s camera ray of pixel `(x, y)` in a frame of several
-    /// samples per pixel: through a point of the pixel's own sequence.
-    #[inline]
-    fn sample_ray(&self, (x, y): (u32, u32), s: u32) -> Ray {
-        let offset = r2(s, pixel_key(x, y, 0));
-        self.0
-            .camera
-            .get_ray_at(x as f32 + offset.x, y as f32 + offset.y)
     }
 
     /// Whether the frame's hits send shadow rays.
@@ -305,4 +299,11 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
 fn occlusion_ray(ray: &Ray, hit: &Hit, entered: Face, key: u32, j: u32) -> Option<Ray> {
     let dir = around(entered, cosine_hemisphere(r2(j, key)));
     secondary(ray, hit, dir)
+}
+
+/// Where sample `s` of pixel `(x, y)` goes through the pixel, in a frame
+/// of several samples per pixel: a point of the pixel's own sequence.
+#[inline]
+fn sample_offset((x, y): (u32, u32), s: u32) -> Vec2 {
+    r2(s, pixel_key(x, y, 0))
 }
