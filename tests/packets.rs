@@ -2,7 +2,9 @@
 //! hit the one-ray walk gives it, bit for bit: on random scenes, for
 //! packets of camera pixels, of diverging and axis-parallel directions,
 //! from origins on planes and corners, outside the volume and in its
-//! empty space, with clear distances up to the nearest hit.
+//! empty space, of parallel rays from scattered origins and of lanes left
+//! out, over reaches from the nearest hit, ending at a hit, a float short
+//! of it, and not a number.
 #![cfg(feature = "packets")]
 
 mod common;
@@ -32,7 +34,7 @@ fn check(scene: &impl Scene, rays: &[Ray; PACKET]) -> Result<u32, TestCaseError>
 }
 
 /// The reaches [`check`] traces each packet over.
-const REACHES: u32 = 5;
+const REACHES: u32 = 7;
 
 /// [`check`] of the lanes of `lanes` only: no other lane is answered.
 fn check_lanes(scene: &impl Scene, rays: &[Ray; PACKET], lanes: u32) -> Result<u32, TestCaseError> {
@@ -50,7 +52,15 @@ fn check_lanes(scene: &impl Scene, rays: &[Ray; PACKET], lanes: u32) -> Result<u
         Reach::within(middle),
         Reach::within(middle * 0.75 + 0.1),
         Reach::within(1.5),
+        Reach {
+            clear: nearest.min(1e30),
+            max: middle,
+        },
+        Reach::within(f32::from_bits(middle.to_bits().saturating_sub(1))),
     ];
+    // A reach that is not a number is left to the one-ray walk.
+    let nan = Reach::within(f32::NAN);
+    prop_assert_eq!(scene.trace_packet(rays, lanes, nan, &mut [None; PACKET]), 0);
     let mut answered = 0;
     for reach in reaches {
         let mut hits = [None; PACKET];

@@ -86,11 +86,14 @@ fn threaded_renders_equal_the_scalar_render_for_1_2_3_and_8_threads() {
             // holds packets to the one-ray walks.
             if !options.debug {
                 let width = camera.width() as usize;
-                for (i, &pixel) in octree_pixels.iter().enumerate().step_by(5) {
+                let mut alone_stats = RayStats::default();
+                for (i, &pixel) in octree_pixels.iter().enumerate() {
                     let (x, y) = ((i % width) as u32, (i / width) as u32);
-                    let alone = render_pixel(&octree, camera, &options, x, y).0;
+                    let (alone, rays) = render_pixel(&octree, camera, &options, x, y);
                     assert_eq!(pixel, alone, "pixel ({x}, {y}), {options:?}");
+                    alone_stats += rays;
                 }
+                assert_eq!(alone_stats, octree_stats, "{options:?}");
             }
             let scenes: [(&(dyn Scene + Sync), &Vec<u32>, RayStats); 2] = [
                 (&dense, &dense_pixels, dense_stats),

@@ -222,7 +222,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         (pack(color), stats)
     }
 
-    /// [`Lit::sample`] `sample` of pixel `(x, y)`, of the camera ray
+    /// Sample `sample` of pixel `(x, y)`, of the camera ray
     /// `ray` whose hit is `hit`; its secondary rays traced here, but for
     /// what the caller `found`.
     #[inline]
@@ -268,9 +268,8 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
             if let (Some(entered), Some(ao)) = (hit.face, shader.options.occlusion) {
                 let rays = u32::from(ao.rays);
                 let open = found.open.unwrap_or_else(|| {
-                    let key = pixel_key(x, y, 1 + sample);
                     let blocked = |j| {
-                        occlusion_ray(ray, &hit, entered, key, j).is_some_and(|r| {
+                        occlusion_ray(ray, &hit, entered, (x, y, sample), j).is_some_and(|r| {
                             let memory = &mut memory.clone();
                             let reach = Reach::within(ao.distance);
                             scene.trace_with(&r, reach, memory, None).hit.is_some()
@@ -292,11 +291,18 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
     }
 }
 
-/// The occlusion ray `j` of the camera ray `ray`'s hit `hit`, entered
-/// through `entered`, for the pixel sample keyed `key`: `None` when no
-/// ray can leave the face (it then counts as open).
+/// The occlusion ray `j` of sample `sample` of pixel `(x, y)`, from the
+/// hit `hit` of its camera ray `ray`, entered through `entered`: `None`
+/// when no ray can leave the face (it then counts as open).
 #[inline]
-fn occlusion_ray(ray: &Ray, hit: &Hit, entered: Face, key: u32, j: u32) -> Option<Ray> {
+pub(super) fn occlusion_ray(
+    ray: &Ray,
+    hit: &Hit,
+    entered: Face,
+    (x, y, sample): (u32, u32, u32),
+    j: u32,
+) -> Option<Ray> {
+    let key = pixel_key(x, y, 1 + sample);
     let dir = around(entered, cosine_hemisphere(r2(j, key)));
     secondary(ray, hit, dir)
 }

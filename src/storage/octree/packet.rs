@@ -1,6 +1,8 @@
-//! Tracing a packet of rays through an `OctreeScene`: 32 rays from
-//! one origin, whose directions share their signs (an 8x4 block of a
-//! camera's pixels), taken down the tree together, front to back.
+//! Tracing a packet of rays through an `OctreeScene`: 32 rays whose
+//! directions share their signs (an 8x4 block of a camera's pixels from
+//! one origin, or the shadow or occlusion rays of neighbouring hits, each
+//! from its own), taken down the tree together, front to back, within a
+//! reach.
 //!
 //! The packet goes down the tree depth first, a node's children in the
 //! order every one of its rays meets them (octants by index with the
@@ -31,7 +33,13 @@
 //! (its near crossings are no later, its far ones no earlier), so no lane
 //! skips the box of its hit; and since a ray's cells grow on every axis
 //! in flipped coordinates, the octant order meets them in the walk's
-//! order: the first solid voxel a lane finds is its hit.
+//! order: the first solid voxel a lane finds is its hit. The hull holds
+//! every lane's crossings when lanes start apart too: a crossing
+//! `(plane - origin) * inv` only grows or only shrinks with each factor,
+//! rounding keeps that order, so it lies between the products of the
+//! ends of the origins' and the reciprocals' ranges. Within a reach, a
+//! voxel entered after its end is no hit, nor is any voxel behind it:
+//! the lane ends with none, as the scalar walk does.
 
 use glam::Vec3A;
 

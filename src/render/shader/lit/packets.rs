@@ -5,14 +5,13 @@
 //! scatter over each face's hemisphere, so they are gathered by the
 //! octant they point into (a packet's lanes share their signs), each
 //! octant's bin traced whenever it holds a packet, where the block's
-//! hits are close enough for their rays to cross the same nodes. The lanes a packet
-//! leaves are traced alone ([`Scene::trace_lanes`]): the answers are
+//! hits are close enough for their rays to cross the same nodes. The
+//! lanes a packet leaves are traced alone ([`Scene::trace_lanes`]): the answers are
 //! [`Lit::shade_sample`]'s, whichever way they were found.
 
 use glam::{IVec3, Vec3A};
 
 use crate::geom::Ray;
-use crate::render::sampling::pixel_key;
 use crate::render::shader::lit::{occlusion_ray, Found, Lit};
 use crate::scene::{Hit, Reach, Scene, WalkMemory, PACKET};
 
@@ -86,9 +85,8 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
                 };
                 found[i].open = Some(0);
                 let (x, y) = at(i);
-                let key = pixel_key(x, y, 1 + sample);
                 for j in 0..u32::from(ao.rays) {
-                    let Some(r) = occlusion_ray(ray, hit, entered, key, j) else {
+                    let Some(r) = occlusion_ray(ray, hit, entered, (x, y, sample), j) else {
                         open[i] += 1;
                         continue;
                     };
