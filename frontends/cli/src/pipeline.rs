@@ -266,8 +266,8 @@ pub const ROUND_STATE_BYTES: u64 = std::mem::size_of::<PixelSamples>() as u64;
 #[cfg(test)]
 mod tests {
     #[test]
-    fn a_pixel_keeps_48_bytes_between_rounds() {
+    fn a_pixel_keeps_64_bytes_between_rounds() {
         // docs/cli.md says so; the memory check counts them.
-        assert_eq!(super::ROUND_STATE_BYTES, 48);
+        assert_eq!(super::ROUND_STATE_BYTES, 64);
     }
 }

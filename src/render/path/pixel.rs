@@ -129,7 +129,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
             } else {
                 Vec3::ZERO
             };
-            pixel.sum += counted;
+            pixel.add(counted);
             pixel.taken += 1;
             if let Some(settings) = &adaptive {
                 pixel.tally.add(counted);
@@ -145,8 +145,10 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
     /// that hit, on a transparent background).
     fn packed(&self, pixel: &PixelSamples) -> u32 {
         let transparent = self.setup.background == Background::Transparent;
-        let sum = pixel.sum;
-        let mean_of = |n: u32| to_u8(sum * (255.0 / n as f32));
+        // The mean of the samples counted: all of them, or on a
+        // transparent background those that hit (`pack_mean` asks for one
+        // or the other).
+        let mean_of = |n: u32| to_u8(pixel.mean_over(n) * 255.0);
         pack_mean(pixel.taken, pixel.hits, transparent, mean_of)
     }
 }
