@@ -14,6 +14,11 @@ use crate::render::view::{basis, unit, Projection};
 mod block;
 #[cfg(feature = "packets")]
 pub(crate) use block::{block_pixel, BLOCK_HEIGHT, BLOCK_WIDTH};
+mod refusal;
+#[cfg(test)]
+mod refusal_tests;
+
+use refusal::{orthographic_refusal, perspective_refusal, OrthoPlane, FAR_APART};
 
 /// The seven camera parameters of the seed paper.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -117,9 +122,7 @@ pub struct Camera {
     ray_error: f32,
 }
 
-/// Why a camera far out fails: not its field of view.
-const FAR: &str = "position too far from the origin: f32 cannot tell its pixels apart there";
-
+/// A camera refusal for `reason`.
 fn invalid(reason: &'static str) -> Error {
     Error::InvalidCamera { reason }
 }
@@ -128,10 +131,15 @@ impl Camera {
     /// Validates the settings and precomputes the viewport.
     ///
     /// Fails with [`Error::InvalidCamera`] for a zero image size, a field of
-    /// view outside `(0, 180)`, non-finite vectors, `lookfrom == lookat`,
-    /// `cam_up` zero (or parallel to the view without `up_fallback`), a
-    /// non-positive focus distance or orthographic height, or a position so
-    /// far from the origin that `f32` cannot tell its pixels apart.
+    /// view outside `(0, 180)`, non-finite vectors, `lookfrom == lookat`, a
+    /// position and target so far apart that the direction between them
+    /// overflows, `cam_up` zero (or parallel to the view without
+    /// `up_fallback`), a non-positive focus distance or orthographic height,
+    /// an image plane that overflows `f32`, or pixels that `f32` cannot tell
+    /// apart. The reason names the setting at fault: where two settings
+    /// fail only together (a position far from the origin and a small
+    /// orthographic height or focus distance), the one further from its
+    /// natural scale (see `orthographic_refusal`).
     pub fn new(s: CameraSettings) -> Result<Self, Error> {
         if s.width == 0 || s.height == 0 {
             return Err(invalid("width and height must be at least 1"));
@@ -141,14 +149,27 @@ impl Camera {
                 "vertical field of view must be in (0, 180) degrees",
             ));
         }
-        if !s.lookfrom.is_finite() || !s.lookat.is_finite() || !s.cam_up.is_finite() {
-            return Err(invalid("position, target and up vector must be finite"));
+        if !s.lookfrom.is_finite() {
+            return Err(invalid("position must be finite"));
+        }
+        if !s.lookat.is_finite() {
+            return Err(invalid("target must be finite"));
+        }
+        if !s.cam_up.is_finite() {
+            return Err(invalid("up vector must be finite"));
         }
         if !(s.focus_dist > 0.0 && s.focus_dist.is_finite()) {
             return Err(invalid("focus distance must be positive and finite"));
         }
         let view = s.lookat - s.lookfrom;
-        let w = unit(view).ok_or(invalid("position and target coincide"))?;
+        // The difference of two finite floats is zero only when they are
+        // equal (subnormals keep it exact), and not finite only when it
+        // overflows.
+        let w = unit(view).ok_or(if view.is_finite() {
+            invalid("position and target coincide")
+        } else {
+            invalid(FAR_APART)
+        })?;
         let (u, v) = basis(w, s.cam_up, s.up_fallback)?;
         let forward =
             Ray::new(s.lookfrom, w).map_err(|_| invalid("view direction is degenerate"))?;
@@ -184,14 +205,9 @@ impl Camera {
         // valid, so is every pixel between them.
         let (wx, hy) = (s.width as f32, s.height as f32);
         for (x, y) in [(0.0, 0.0), (wx, 0.0), (0.0, hy), (wx, hy)] {
-            Ray::from_lanes(camera.center, camera.sample(x, y) - camera.center).map_err(|_| {
-                // Far out, the image plane rounds onto the position itself.
-                if camera.ray_error > 0.01 {
-                    invalid(FAR)
-                } else {
-                    invalid("field of view or image size too extreme")
-                }
-            })?;
+            let corner = camera.sample(x, y) - camera.center;
+            Ray::from_lanes(camera.center, corner)
+                .map_err(|_| perspective_refusal(&s, corner.into(), viewport_u, viewport_v))?;
         }
         Ok(camera)
     }
@@ -216,7 +232,16 @@ impl Camera {
         let m = pixel00.abs().max_element() + viewport_u.abs().max_element();
         let step = delta_u.length().min(delta_v.length());
         if !(pixel00.is_finite() && viewport_u.is_finite() && step > 8.0 * m * f32::EPSILON) {
-            return Err(invalid(FAR));
+            let plane = OrthoPlane {
+                viewport_u,
+                viewport_v,
+                delta_u,
+                delta_v,
+                pixel00,
+                m,
+                step,
+            };
+            return Err(orthographic_refusal(&s, &plane));
         }
         Ok(Camera {
             width: s.width,

@@ -82,8 +82,11 @@ impl Framer {
         if !(fill > 0.0 && fill <= 1.0) {
             return Err(invalid("the framing's fill must be in (0, 1]"));
         }
-        if !toward_camera.is_finite() || !base.cam_up.is_finite() {
-            return Err(invalid("position, target and up vector must be finite"));
+        if !toward_camera.is_finite() {
+            return Err(invalid("view direction must be finite"));
+        }
+        if !base.cam_up.is_finite() {
+            return Err(invalid("up vector must be finite"));
         }
         let forward = -unit(toward_camera).ok_or(invalid("the view direction is zero"))?;
         let (right, up) = basis(forward, base.cam_up, base.up_fallback)?;

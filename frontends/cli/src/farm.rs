@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 
 use voxtrace::{Camera, RenderOptions};
 use voxtrace_cli::atomic::{remove_on_signal, same_file};
+use voxtrace_cli::errors::show_path;
 use voxtrace_cli::part::{fnv1a64, settings_text, write_part, Placement};
 use voxtrace_cli::stitch::{list, stitch};
 use voxtrace_cli::tiles::{frames_for_task, tile_name};
@@ -127,16 +128,13 @@ pub fn select(
     let subject = match scene {
         TileScene::Vox(path) => {
             let bytes = std::fs::read(path)
-                .map_err(|e| format!("cannot load --vox {}: {e}", path.display()))?;
+                .map_err(|e| format!("cannot load --vox {}: {e}", show_path(path)))?;
             format!("vox fnv1a64={:016x}", fnv1a64(&bytes))
         }
         TileScene::Terrain { seed, size } => format!("terrain seed={seed} size={size}"),
     };
     let settings = settings_text(&subject, backend.name(), camera, options);
-    // A path that is not UTF-8 has no `%t` this build could replace.
-    let out = out.to_str().map_or(out.to_path_buf(), |pattern| {
-        PathBuf::from(tile_name(pattern, tile, grid.count()))
-    });
+    let out = tile_path(out, tile, grid.count());
     let placement = Placement {
         frame_width: width,
         frame_height: height,
@@ -151,6 +149,38 @@ pub fn select(
         settings,
         out,
     }))
+}
+
+/// `out` with every `%t` replaced by tile `tile` of `count`, as
+/// [`tile_name`] numbers it; the rest kept byte for byte, UTF-8 or not.
+fn tile_path(out: &Path, tile: u32, count: u32) -> PathBuf {
+    if let Some(pattern) = out.to_str() {
+        return PathBuf::from(tile_name(pattern, tile, count));
+    }
+    let number = tile_name("%t", tile, count);
+    let mut bytes = Vec::new();
+    let mut rest = out.as_os_str().as_encoded_bytes();
+    while let Some(at) = rest.windows(2).position(|w| w == b"%t") {
+        bytes.extend_from_slice(&rest[..at]);
+        bytes.extend_from_slice(number.as_bytes());
+        rest = &rest[at + 2..];
+    }
+    bytes.extend_from_slice(rest);
+    path_from_bytes(bytes).unwrap_or_else(|| out.to_path_buf())
+}
+
+/// The path of `bytes` (as `OsStr::as_encoded_bytes` gives them): any
+/// bytes on Unix; elsewhere a path that is not UTF-8 has no `%t` replaced.
+fn path_from_bytes(bytes: Vec<u8>) -> Option<PathBuf> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::ffi::OsStringExt;
+        Some(PathBuf::from(std::ffi::OsString::from_vec(bytes)))
+    }
+    #[cfg(not(unix))]
+    {
+        String::from_utf8(bytes).ok().map(PathBuf::from)
+    }
 }
 
 /// Writes a rendered tile as a part PNG into `file`.
@@ -176,7 +206,7 @@ pub fn run_stitch(args: &StitchArgs) -> Result<(), String> {
         return Err("stitch needs at least one PART (voxtrace stitch PART... --out FILE)".into());
     }
     if output::format_of(out, None)? != output::Format::Png {
-        return Err(format!("stitch writes PNG, not --out {}", out.display()));
+        return Err(format!("stitch writes PNG, not --out {}", show_path(out)));
     }
     let to_stdout = output::is_stdout(out);
     if to_stdout {
@@ -186,7 +216,7 @@ pub fn run_stitch(args: &StitchArgs) -> Result<(), String> {
     // Before any output exists: an interrupted stitch then removes its
     // temporary file and leaves --out as it was.
     remove_on_signal()?;
-    let failed = |e: String| format!("cannot write --out {}: {e}", out.display());
+    let failed = |e: String| format!("cannot write --out {}: {e}", show_path(out));
     // Created first, so that a bad --out fails before the parts are read,
     // and as a render creates its own: a terminal is refused alike.
     let file = if to_stdout {
@@ -235,13 +265,13 @@ fn refuse_a_part_as_out(out: &Path, to_stdout: bool, parts: &[PathBuf]) -> Resul
     let shown = if to_stdout {
         "- (standard output)".to_string()
     } else {
-        out.display().to_string()
+        show_path(out)
     };
     for part in parts {
         if std::fs::metadata(part).is_ok_and(|m| same_file(&m, &target)) {
             return Err(format!(
                 "--out {shown} is the part {}: the stitch would overwrite its own input",
-                part.display()
+                show_path(part)
             ));
         }
     }

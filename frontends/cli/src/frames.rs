@@ -2,11 +2,14 @@
 //! output path that becomes the frame number (`spin_####.png` ->
 //! `spin_0001.png`), as Blender names its frames. Frames count from 1.
 
+use std::ffi::{OsStr, OsString};
 use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 
 use voxtrace::glam::Vec3;
 use voxtrace::CameraSettings;
+
+use crate::errors::show_path;
 
 /// A run of frames `first..=last`, 1-based.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -76,26 +79,49 @@ pub fn parse_frame_range(s: &str) -> Result<FrameRange, String> {
 }
 
 /// `pattern` with its last run of `#` in the file name replaced by `frame`,
-/// zero-padded to the run's length (longer numbers are written whole).
+/// zero-padded to the run's length (longer numbers are written whole). The
+/// rest of the name is kept byte for byte, UTF-8 or not.
 ///
 /// # Errors
 /// When the file name has no `#`.
 pub fn frame_path(pattern: &Path, frame: u32) -> Result<PathBuf, String> {
+    let needs_hashes = || {
+        format!(
+            "--out {} needs a run of # for the frame number (for example spin_####.png)",
+            show_path(pattern)
+        )
+    };
     let name = pattern
         .file_name()
-        .and_then(|n| n.to_str())
-        .filter(|n| n.contains('#'))
-        .ok_or_else(|| {
-            format!(
-                "--out {} needs a run of # for the frame number (for example spin_####.png)",
-                pattern.display()
-            )
-        })?;
-    let end = name.rfind('#').map_or(0, |i| i + 1);
-    let start = name[..end].trim_end_matches('#').len();
+        .map(OsStr::as_encoded_bytes)
+        .filter(|n| n.contains(&b'#'))
+        .ok_or_else(needs_hashes)?;
+    let end = name.iter().rposition(|&b| b == b'#').map_or(0, |i| i + 1);
+    let start = name[..end]
+        .iter()
+        .rposition(|&b| b != b'#')
+        .map_or(0, |i| i + 1);
     let width = end - start;
-    let named = format!("{}{frame:0width$}{}", &name[..start], &name[end..]);
+    let mut named = name[..start].to_vec();
+    named.extend_from_slice(format!("{frame:0width$}").as_bytes());
+    named.extend_from_slice(&name[end..]);
+    // Only where a name that is not UTF-8 cannot be rebuilt from bytes.
+    let named = name_from_bytes(named).ok_or_else(needs_hashes)?;
     Ok(pattern.with_file_name(named))
+}
+
+/// The file name of `bytes` (as `OsStr::as_encoded_bytes` gives them): any
+/// bytes on Unix, else only UTF-8.
+fn name_from_bytes(bytes: Vec<u8>) -> Option<OsString> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::ffi::OsStringExt;
+        Some(OsString::from_vec(bytes))
+    }
+    #[cfg(not(unix))]
+    {
+        String::from_utf8(bytes).ok().map(OsString::from)
+    }
 }
 
 /// Frame `frame` (1-based) of a turntable of `frames` frames: `base`'s
@@ -151,6 +177,17 @@ mod tests {
         assert_eq!(p("f##.png", 123).unwrap(), "f123.png");
         assert_eq!(p("dir#/f#", 3).unwrap(), "dir#/f3");
         assert!(p("dir#/spin.png", 1).is_err());
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_name_that_is_not_utf8_keeps_its_bytes() {
+        use std::os::unix::ffi::OsStrExt;
+        let pattern = Path::new(OsStr::from_bytes(b"d\xfe/s\xff_##\x80.png"));
+        let path = frame_path(pattern, 7).unwrap();
+        assert_eq!(path.as_os_str().as_bytes(), b"d\xfe/s\xff_07\x80.png");
+        let error = frame_path(Path::new(OsStr::from_bytes(b"s\xff.png")), 1).unwrap_err();
+        assert!(error.contains("--out s\\xff.png needs"), "{error}");
     }
 
     #[test]

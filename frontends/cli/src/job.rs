@@ -11,6 +11,7 @@ use voxtrace::{
     RoundsDone,
 };
 use voxtrace_cli::atomic::AtomicFile;
+use voxtrace_cli::errors::show_path;
 use voxtrace_cli::{on_threads, say, Backend, BuiltScene, Rendered, ROUND_STATE_BYTES};
 use voxtrace_flags::describe;
 
@@ -127,7 +128,7 @@ impl Job<'_> {
     ) -> Result<(), String> {
         let region = self.region;
         let alpha = self.options.background == Background::Transparent;
-        let failed = |e: String| format!("cannot write --out {}: {e}", path.display());
+        let failed = |e: String| format!("cannot write --out {}: {e}", show_path(path));
         if first.is_none() && output::is_stdout(path) {
             let out = output::stdout().map_err(|e| failed(e.to_string()))?;
             return output::write(out, self.format, region.width, region.height, pixels, alpha)
@@ -155,10 +156,10 @@ impl Job<'_> {
     /// Builds the scene once and renders every frame's camera into its
     /// path, `out` being the first path or `-` (standard output).
     ///
-    /// The first path's file is created before the build, so that a bad
-    /// path fails before the work: a temporary file beside it from then
-    /// on, which replaces the path only once complete and is removed on
-    /// any error.
+    /// The first path's file is created before the build, and every other
+    /// path checked, so that a bad path fails before the work: a temporary
+    /// file beside it from then on, which replaces the path only once
+    /// complete and is removed on any error.
     ///
     /// # Errors
     /// One line: the file cannot be created, the scene built, a frame
@@ -174,6 +175,10 @@ impl Job<'_> {
         } else {
             Some(output::create(&paths[0])?)
         };
+        // A turntable's later frames fail now too, before any is replaced.
+        for path in paths.iter().skip(1) {
+            output::check(path)?;
+        }
         let threaded = self.threads != Some(1);
         let region = self.region;
         on_threads(self.threads, || {

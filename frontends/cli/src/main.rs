@@ -17,13 +17,15 @@ mod subject;
 mod view;
 mod vox_camera;
 
+use std::ffi::OsString;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use clap::{ArgMatches, CommandFactory, FromArgMatches};
+use clap::{ArgMatches, CommandFactory};
 use voxtrace::{Camera, CameraSettings, EffectPlan, Look, Rect, RenderOptions, VoxelGenerator};
-use voxtrace_cli::atomic::{exit_with_error, remove_on_signal};
-use voxtrace_cli::errors::{self, escape_controls};
+use voxtrace_cli::atomic::{exit_with_error, remove_on_signal, AtomicFile};
+use voxtrace_cli::errors::{self, escape_controls, show_path};
 use voxtrace_cli::say;
 use voxtrace_cli::{export_vox, frame_path, terrain_box, turntable, FrameRange};
 use voxtrace_flags::Effects;
@@ -37,18 +39,36 @@ use output::Format;
 use subject::{terrain_seed, Subject};
 use view::camera_settings;
 
-/// Parses the flags, then stitches, exports the terrain or renders; any
-/// error is one line on stderr and exit code 2.
+/// The stack of the thread that does the work: what a Linux main thread
+/// usually has (`ulimit -s` 8192), whatever limit the process was started
+/// with (under `prlimit --stack=49152` the main thread's own would
+/// overflow). Reserved address space; only what is touched is memory.
+const WORK_STACK: usize = 8 << 20;
+
+/// Runs [`work`] on a thread whose stack is [`WORK_STACK`], and exits as it
+/// does. Rayon's workers size their own stacks.
 fn main() -> ExitCode {
-    let argv: Vec<String> = std::env::args_os()
-        .map(|a| a.to_string_lossy().into_owned())
-        .collect();
-    let parsed = Args::command()
-        .try_get_matches_from(&argv)
-        .and_then(|m| Args::from_arg_matches(&m).map(|a| (a, m)));
-    let (args, matches) = match parsed {
+    let worker = std::thread::Builder::new()
+        .name("voxtrace".into())
+        .stack_size(WORK_STACK);
+    match worker.spawn(work) {
+        // A panic ends the process as it would have on this thread.
+        Ok(thread) => thread
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
+        // Where no such thread can start (a tiny address space), here.
+        Err(_) => work(),
+    }
+}
+
+/// Parses the flags (as given: a path need not be UTF-8), then stitches,
+/// exports the terrain or renders; any error is one line on stderr and
+/// exit code 2.
+fn work() -> ExitCode {
+    let argv: Vec<OsString> = std::env::args_os().collect();
+    let (args, matches) = match errors::parse::<Args>(&Args::command(), &argv) {
         Ok(parsed) => parsed,
-        Err(e) => return errors::clap_failure(&e, &argv),
+        Err(e) => return errors::clap_failure(e, &argv),
     };
     if let Some(Command::Stitch(stitch)) = &args.command {
         return match farm::run_stitch(stitch) {
@@ -92,6 +112,10 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     let settings = camera_settings(file, &flags, &subject.stage(), subject.cameras())?;
     let range = frame_range(args.frames, args.frame_range, &args.farm)?;
     let cameras = turntable_cameras(settings, range, args.frames.unwrap_or(1))?;
+    if let Some(frames) = args.frames {
+        // A turntable stopped early names the frames it wrote.
+        voxtrace_cli::atomic::expect_frames(range, frames);
+    }
     let first = &cameras[0].camera;
     let (options, plan) = resolve_effects(&args.effects(), &subject, &settings);
     let scene = subject.tile_scene();
@@ -143,13 +167,13 @@ fn finished(paths: &[PathBuf], region: Rect, took: std::time::Duration) {
         [one] => {
             let bytes = std::fs::metadata(one).map_or(0, |m| m.len());
             let bytes = voxtrace_cli::human_bytes(u128::from(bytes));
-            say!("wrote {}: {size}, {bytes}, {secs:.1} s", one.display());
+            say!("wrote {}: {size}, {bytes}, {secs:.1} s", show_path(one));
         }
         many => say!(
             "wrote {} frames of {size}, {} to {}, in {secs:.1} s",
             many.len(),
-            many[0].display(),
-            many[many.len() - 1].display()
+            show_path(&many[0]),
+            show_path(&many[many.len() - 1])
         ),
     }
 }
@@ -324,14 +348,20 @@ fn output_paths(
     if tiled && format != Format::Png {
         return Err(format!(
             "--tiles writes PNG parts (their place in the frame is a PNG text chunk), not --out {}",
-            out.display()
+            show_path(out)
         ));
     }
     // `%t` names a tile's part: without --tiles it would be written as is.
-    if !tiled && pattern.to_string_lossy().contains("%t") {
+    let has_tile_number = |p: &Path| {
+        p.as_os_str()
+            .as_encoded_bytes()
+            .windows(2)
+            .any(|w| w == b"%t")
+    };
+    if !tiled && has_tile_number(pattern) {
         return Err(format!(
             "--out {} has %t, the tile number of --tiles parts: without --tiles, name one file",
-            pattern.display()
+            show_path(pattern)
         ));
     }
     let to_stdout = output::is_stdout(out);
@@ -372,14 +402,19 @@ fn report(subject: &Subject<'_>, notes: &[String]) {
 }
 
 /// `--export-vox`: the terrain of `seed` (random without one) and `size`
-/// as a `.vox` file at `path`, with `--stats`' counts when `stats`.
+/// as a `.vox` file at `path`, with `--stats`' counts when `stats`. The
+/// file is written as every output is: whole, or not at all.
 fn export(path: &Path, seed: Option<u64>, size: i32, stats: bool) -> Result<(), String> {
+    let failed = |e: String| format!("cannot write --export-vox {}: {e}", show_path(path));
+    // Before the work: a bad path fails at once.
+    let mut file = AtomicFile::create(path).map_err(|e| failed(e.to_string()))?;
     let (seed, random) = terrain_seed(seed);
     let mut bytes = Vec::new();
     let terrain = VoxelGenerator::new(seed);
     let count = export_vox(&terrain, terrain_box(&terrain, size), &mut bytes)?;
-    std::fs::write(path, &bytes)
-        .map_err(|e| format!("cannot write --export-vox {}: {e}", path.display()))?;
+    file.write_all(&bytes)
+        .and_then(|()| file.commit())
+        .map_err(|e| failed(e.to_string()))?;
     // Only now: an error stays the one line on stderr.
     if random {
         say!("seed: {seed}");

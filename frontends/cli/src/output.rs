@@ -7,6 +7,7 @@ use std::io::{BufWriter, Write};
 use std::path::Path;
 
 use voxtrace_cli::atomic::AtomicFile;
+use voxtrace_cli::errors::show_path;
 
 use crate::args::FormatArg;
 
@@ -44,11 +45,26 @@ pub const TERMINAL: &str = "refusing to write a binary image to a terminal";
 /// One line: why `path` cannot be written, or that it is a terminal.
 pub fn create(path: &Path) -> Result<AtomicFile, String> {
     let file = AtomicFile::create(path)
-        .map_err(|e| format!("cannot write --out {}: {e}", path.display()))?;
+        .map_err(|e| format!("cannot write --out {}: {e}", show_path(path)))?;
     if file.is_terminal() {
-        return Err(format!("{TERMINAL} ({}); pass --out FILE", path.display()));
+        return Err(format!("{TERMINAL} ({}); pass --out FILE", show_path(path)));
     }
     Ok(file)
+}
+
+/// Checks, before any work, that `path` can be written as [`create`]
+/// writes it, creating nothing: every later frame of a turntable, so that
+/// a frame that cannot be written fails before the first is replaced.
+///
+/// # Errors
+/// One line: why `path` cannot be written.
+pub fn check(path: &Path) -> Result<(), String> {
+    AtomicFile::check(path).map_err(|e| {
+        format!(
+            "cannot write --out {}: {e}",
+            voxtrace_cli::errors::show_path(path)
+        )
+    })
 }
 
 /// Checks, before any work, that standard output can take the image: it
@@ -129,13 +145,15 @@ pub fn format_of(path: &Path, asked: Option<FormatArg>) -> Result<Format, String
     if is_stdout(path) {
         return Ok(Format::Png);
     }
-    let Some(ext) = path.extension().and_then(|e| e.to_str()) else {
+    let Some(ext) = path.extension() else {
         return Ok(Format::Png);
     };
-    by_extension(ext).ok_or_else(|| {
+    // An extension that is not UTF-8 names no format either.
+    ext.to_str().and_then(by_extension).ok_or_else(|| {
         format!(
-            "cannot write --out {}: no encoder for .{ext}; this build writes {FORMATS}",
-            path.display()
+            "cannot write --out {}: no encoder for .{}; this build writes {FORMATS}",
+            show_path(path),
+            show_path(Path::new(ext))
         )
     })
 }

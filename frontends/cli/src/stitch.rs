@@ -10,6 +10,7 @@ use std::fs::File;
 use std::io::BufReader;
 use std::path::{Path, PathBuf};
 
+use crate::errors::show_path;
 use crate::part::{read_part, Part};
 use crate::settings_diff::settings_difference;
 use crate::tiles::Grid;
@@ -41,11 +42,18 @@ pub const FRAME_BYTES_PER_PIXEL: u128 = 8;
 /// is the memory the stitch may still use, and where that figure comes
 /// from (for the message).
 ///
+/// Each part is checked whole as it is read (see [`read_part`]: its
+/// structure and chunk CRCs, its chunks, its zlib stream to the end and
+/// its Adler-32, its digest), before the next is opened; then the parts
+/// are checked against each other.
+///
 /// # Errors
-/// One line naming the problem: a file that cannot be read or is not a
-/// voxtrace tile (or is corrupt), parts of different settings, frames or
-/// grids, a tile given twice, unless `allow_partial` missing tiles, or a
-/// frame that needs more than `available` bytes.
+/// One line naming the problem and the part file: a file that cannot be
+/// read, is not a voxtrace tile, is damaged or altered (anything
+/// [`read_part`] refuses, a part without a digest included), parts of
+/// different settings, frames or grids, a tile given twice, unless
+/// `allow_partial` missing tiles, or a frame that needs more than
+/// `available` bytes.
 pub fn stitch(
     paths: &[PathBuf],
     allow_partial: bool,
@@ -53,9 +61,9 @@ pub fn stitch(
 ) -> Result<Stitched, String> {
     let mut parts = Vec::with_capacity(paths.len());
     for path in paths {
-        let file = File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        let file = File::open(path).map_err(|e| format!("cannot read {}: {e}", show_path(path)))?;
         let part =
-            read_part(BufReader::new(file)).map_err(|e| format!("{}: {e}", path.display()))?;
+            read_part(BufReader::new(file)).map_err(|e| format!("{}: {e}", show_path(path)))?;
         if parts.is_empty() {
             // The frame is known from the first part: a frame too large is
             // refused before the other parts are read.
@@ -81,7 +89,7 @@ pub fn assemble(
     let one = &first.placement;
     for (path, part) in &parts[1..] {
         let p = &part.placement;
-        let names = || format!("{} and {}", first_path.display(), path.display());
+        let names = || format!("{} and {}", show_path(first_path), show_path(path));
         if (p.frame_width, p.frame_height) != (one.frame_width, one.frame_height) {
             return Err(format!(
                 "{} are of frames of different sizes ({}x{} against {}x{})",
@@ -130,7 +138,7 @@ pub fn assemble(
         if rect != Some(p.rect) || area != Some(part.pixels.len()) {
             return Err(format!(
                 "{}: its rectangle or pixels are not tile {} of {grid} over {width}x{height}",
-                path.display(),
+                show_path(path),
                 p.tile
             ));
         }
@@ -138,8 +146,8 @@ pub fn assemble(
         if let Some(earlier) = owner[tile] {
             return Err(format!(
                 "duplicate tile {tile}: {} and {}",
-                earlier.display(),
-                path.display()
+                show_path(earlier),
+                show_path(path)
             ));
         }
         owner[tile] = Some(path);

@@ -8,6 +8,7 @@ use std::time::Duration;
 
 use voxtrace::glam::{IVec3, Vec3};
 use voxtrace::{CameraSettings, IAabb, SceneMaterials, VoxModel, VoxelGenerator, VoxelSource};
+use voxtrace_cli::errors::show_path;
 use voxtrace_cli::{Backend, BuiltScene};
 use voxtrace_flags::{Boxes, Stage};
 
@@ -68,7 +69,7 @@ impl<'a> Subject<'a> {
                 path,
                 model: Box::new(
                     VoxModel::load(path)
-                        .map_err(|e| format!("cannot load --vox {}: {e}", path.display()))?,
+                        .map_err(|e| format!("cannot load --vox {}: {e}", show_path(path)))?,
                 ),
             },
             None => {
@@ -144,7 +145,7 @@ impl<'a> Subject<'a> {
             Subject::Model { path, model } => model
                 .warnings()
                 .iter()
-                .map(|w| format!("{}: {w}", path.display()))
+                .map(|w| format!("{}: {w}", show_path(path)))
                 .collect(),
             Subject::Terrain { .. } => Vec::new(),
         }

@@ -4,6 +4,7 @@
 use std::path::Path;
 
 use voxtrace::{CameraSettings, Projection, VoxCamera, VoxCameraMode, VoxModel};
+use voxtrace_cli::errors::show_path;
 
 /// The cameras `--camera` may pick from: the `.vox` file's path and the
 /// scene loaded from it; `None` for the terrain.
@@ -26,7 +27,7 @@ pub fn file_camera(
             "--camera {n} picks a camera of a .vox file: give --vox FILE (the terrain has none)"
         ));
     };
-    let file = path.display();
+    let file = show_path(path);
     let cameras = model.cameras();
     let Some(camera) = cameras.iter().find(|c| c.id == n) else {
         let malformed = match model.malformed_cameras() {

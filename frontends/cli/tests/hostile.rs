@@ -12,6 +12,16 @@
 
 mod common;
 
+// One file per kind of attack, beside the generated inputs below.
+#[path = "hostile/core_refusals.rs"]
+mod core_refusals;
+#[path = "hostile/names.rs"]
+mod names;
+#[path = "hostile/replace.rs"]
+mod replace;
+#[path = "hostile/stitch_digest.rs"]
+mod stitch_digest;
+
 use std::path::{Path, PathBuf};
 
 use common::limits::{check_contract, run_limited, run_limited_within, tools_present};

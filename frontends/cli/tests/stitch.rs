@@ -1,7 +1,10 @@
-//! `voxtrace stitch` under attack: an `--out` that is one of its parts, a
-//! part whose pixels were altered with its chunk CRC fixed up, `--out -`,
-//! signals, a frame too large for memory and file names with newlines. Each
-//! is one `error:` line and exit 2 (130/143 for a signal), or the frame.
+//! `voxtrace stitch` under attack: an `--out` that is one of its parts,
+//! damaged parts (a pixel altered with its chunk CRC fixed up, an ancillary
+//! chunk with a bad CRC, the last `IDAT` dropped, bytes after the zlib
+//! stream or after `IEND`), `--out -`, signals, a frame too large for
+//! memory and file names with newlines. Each is one `error:` line and exit
+//! 2 (130/143 for a signal), or the frame. Forged digests and every bit of
+//! a part's image data flipped are in `hostile/stitch_digest.rs`.
 
 mod common;
 
@@ -10,7 +13,7 @@ use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 use common::limits::{check_contract, run_limited, tools_present};
-use common::parts::numbered_part;
+use common::parts::{chunks, idat_indices, numbered_part, png_of, Chunk};
 use common::run::{assert_refused, fresh_dir, stderr};
 #[cfg(unix)]
 use common::terminal::Pty;
@@ -84,26 +87,10 @@ fn an_out_that_is_one_of_the_parts_is_refused_however_it_is_spelled() {
     assert!(ok.status.success(), "{}", stderr(&ok));
 }
 
-/// The CRC-32 of PNG chunks (ISO 3309, as the PNG spec gives it).
-fn crc32(bytes: &[u8]) -> u32 {
-    let mut crc = !0u32;
-    for &b in bytes {
-        crc ^= u32::from(b);
-        for _ in 0..8 {
-            crc = if crc & 1 == 1 {
-                (crc >> 1) ^ 0xedb8_8320
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    !crc
-}
-
 /// `png` re-encoded with its image data stored uncompressed (so that any
 /// byte of it can change and the stream still inflates) and the first
-/// pixel's red byte flipped, the IDAT chunk's CRC recomputed: only the
-/// zlib stream's Adler-32 still tells.
+/// pixel's red byte flipped, the IDAT chunk's CRC recomputed: the zlib
+/// stream's Adler-32 and the part's digest still tell.
 fn flip_a_pixel_byte(png: &[u8]) -> Vec<u8> {
     let decoder = png::Decoder::new(std::io::Cursor::new(png));
     let mut reader = decoder.read_info().unwrap();
@@ -129,7 +116,7 @@ fn flip_a_pixel_byte(png: &[u8]) -> Vec<u8> {
     let len = u32::from_be_bytes(stored[idat..idat + 4].try_into().unwrap()) as usize;
     // zlib header (2), stored block header (5), row 0's filter byte (1).
     stored[idat + 8 + 2 + 5 + 1] ^= 0x40;
-    let crc = crc32(&stored[idat + 4..idat + 8 + len]);
+    let crc = common::parts::crc32(&stored[idat + 4..idat + 8 + len]);
     stored[idat + 8 + len..idat + 12 + len].copy_from_slice(&crc.to_be_bytes());
     // The tampered file is still a valid PNG to the png crate's default
     // decoder, which skips Adler-32: only the pixel differs.
@@ -155,6 +142,91 @@ fn a_part_whose_image_data_was_altered_is_refused_naming_it() {
     let out = stitch_in(&dir, &["t-0.png", "tampered.png", "--out", "frame.png"]);
     assert_refused(&out, &["tampered.png", "corrupt"]);
     assert!(!dir.join("frame.png").exists());
+}
+
+/// Stitches `t-0.png` with `name` (tile 1), written as `bytes`, in `dir`,
+/// and checks that the stitch was refused, naming `name` and each of
+/// `needles`, and wrote no frame.
+fn refused_as_tile_1(dir: &Path, name: &str, bytes: &[u8], needles: &[&str]) {
+    std::fs::write(dir.join(name), bytes).unwrap();
+    let out = stitch_in(dir, &["t-0.png", name, "--out", "frame.png"]);
+    assert_refused(&out, &[&[name][..], needles].concat());
+    assert!(!dir.join("frame.png").exists());
+}
+
+#[test]
+fn a_part_with_an_ancillary_chunk_whose_crc_is_bad_is_refused() {
+    let dir = scratch("ancillary-crc");
+    let parts = two_tiles(&dir);
+    let good = chunks(&std::fs::read(&parts[1]).unwrap());
+    // A chunk the stitch does not read (tIME, the last-modified time)
+    // whose CRC does not match: the PNG crate skips such a chunk unless
+    // told not to.
+    let mut time = Chunk::new(b"tIME", vec![7, 233, 1, 2, 3, 4, 5]);
+    time.crc ^= 1;
+    let mut with_time = good.clone();
+    with_time.insert(1, time);
+    refused_as_tile_1(&dir, "time.png", &png_of(&with_time), &["CRC", "tIME"]);
+    // And one of the part's own text chunks: a CRC error, not a part that
+    // seems to lack the chunk.
+    for keyword in ["voxtrace-part", "voxtrace-settings", "voxtrace-digest"] {
+        let mut bad = good.clone();
+        let chunk = bad
+            .iter_mut()
+            .find(|c| c.as_text().is_some_and(|(k, _)| k == keyword))
+            .unwrap();
+        chunk.crc ^= 0x8000_0000;
+        refused_as_tile_1(&dir, "text.png", &png_of(&bad), &["CRC", "tEXt"]);
+    }
+}
+
+#[test]
+fn a_part_whose_last_idat_is_dropped_is_refused() {
+    let dir = scratch("dropped-idat");
+    let parts = two_tiles(&dir);
+    let mut chunks = chunks(&std::fs::read(&parts[1]).unwrap());
+    let idats = idat_indices(&chunks);
+    // The core's encoder ends the stream in an IDAT of its own (the final
+    // block and the Adler-32): without it the pixels all decode.
+    assert!(idats.len() >= 2, "one IDAT only");
+    chunks.remove(*idats.last().unwrap());
+    refused_as_tile_1(
+        &dir,
+        "dropped.png",
+        &png_of(&chunks),
+        &["zlib stream is cut short"],
+    );
+}
+
+#[test]
+fn a_part_with_bytes_after_its_zlib_stream_or_after_iend_is_refused() {
+    let dir = scratch("trailing");
+    let parts = two_tiles(&dir);
+    let good = std::fs::read(&parts[1]).unwrap();
+    // A byte after the zlib stream, inside the last IDAT (its CRC made
+    // right): decoders skip it.
+    let mut chunks = chunks(&good);
+    let last = *idat_indices(&chunks).last().unwrap();
+    chunks[last].data.push(0);
+    chunks[last].fix_crc();
+    refused_as_tile_1(
+        &dir,
+        "after-stream.png",
+        &png_of(&chunks),
+        &["after its zlib stream's end"],
+    );
+    // An IDAT after the stream's end.
+    let mut chunks = common::parts::chunks(&good);
+    chunks.insert(last + 1, Chunk::new(b"IDAT", vec![0; 4]));
+    refused_as_tile_1(
+        &dir,
+        "extra-idat.png",
+        &png_of(&chunks),
+        &["after its zlib stream's end"],
+    );
+    // Bytes after IEND.
+    let trailing = [&good[..], b"more"].concat();
+    refused_as_tile_1(&dir, "after-iend.png", &trailing, &["after IEND"]);
 }
 
 /// The frame of `two_tiles` as a PNG, stitched into a file.

@@ -1,6 +1,7 @@
 //! The small reader of a `.vox` file's chunk stream that the rOBJ and rCAM
-//! chunks need (dot_vox skips both): the chunks among MAIN's children with
-//! a given id, MagicaVoxel's DICT, and numbers separated by spaces. Every
+//! chunks need (dot_vox skips both), and the MATL chunks dot_vox drops
+//! (`matl.rs`): the chunks among MAIN's children with a given id,
+//! MagicaVoxel's DICT, and numbers separated by spaces. Every
 //! read is bounds-checked: malformed bytes give `None` or nothing, never a
 //! panic or an allocation larger than the input.
 
@@ -14,26 +15,39 @@ pub(crate) fn u32_at(bytes: &[u8], at: usize) -> Option<u32> {
     Some(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
 }
 
-/// A MagicaVoxel DICT (count, then length-prefixed key and value strings).
+/// A MagicaVoxel DICT (count, then length-prefixed key and value strings),
+/// each string lossily as text (a byte that is not UTF-8 becomes U+FFFD).
 pub(crate) fn dict(bytes: &[u8]) -> Option<HashMap<String, String>> {
+    let text = |s: &[u8]| String::from_utf8_lossy(s).into_owned();
+    Some(
+        raw_dict(bytes)?
+            .into_iter()
+            .map(|(key, value)| (text(key), text(value)))
+            .collect(),
+    )
+}
+
+/// A MagicaVoxel DICT's key and value strings as bytes, in file order
+/// (a later pair with the same key is the one a map keeps).
+pub(crate) fn raw_dict(bytes: &[u8]) -> Option<Vec<(&[u8], &[u8])>> {
     let count = u32_at(bytes, 0)? as usize;
     let mut at = 4;
-    let mut out = HashMap::new();
-    let text = |at: &mut usize| -> Option<String> {
+    let string = |at: &mut usize| -> Option<&[u8]> {
         let len = u32_at(bytes, *at)? as usize;
         let start = at.checked_add(4)?;
         let s = bytes.get(start..start.checked_add(len)?)?;
         *at = start + len;
-        Some(String::from_utf8_lossy(s).into_owned())
+        Some(s)
     };
     // Each pair takes at least 8 bytes: a count past that is malformed.
     if count > bytes.len() / 8 {
         return None;
     }
+    let mut out = Vec::new();
     for _ in 0..count {
-        let key = text(&mut at)?;
-        let value = text(&mut at)?;
-        out.insert(key, value);
+        let key = string(&mut at)?;
+        let value = string(&mut at)?;
+        out.push((key, value));
     }
     Some(out)
 }
@@ -88,7 +102,7 @@ pub(crate) fn numbers<const N: usize>(text: Option<&String>) -> Option<[f32; N]>
 }
 
 /// Writers of the stream the reader above reads, for the tests of the
-/// chunks built on it (rOBJ, rCAM).
+/// chunks built on it (rOBJ, rCAM, MATL).
 #[cfg(test)]
 pub(crate) mod write {
     use std::vec::Vec;
@@ -96,14 +110,37 @@ pub(crate) mod write {
     /// MagicaVoxel's DICT of `pairs`: a count, then each key and value as
     /// a length and its bytes.
     pub(crate) fn dict(pairs: &[(&str, &str)]) -> Vec<u8> {
+        let pairs: Vec<(&[u8], &[u8])> = pairs
+            .iter()
+            .map(|(k, v)| (k.as_bytes(), v.as_bytes()))
+            .collect();
+        raw_dict(&pairs)
+    }
+
+    /// [`dict`] of strings of any bytes, UTF-8 or not.
+    pub(crate) fn raw_dict(pairs: &[(&[u8], &[u8])]) -> Vec<u8> {
         let mut d = (pairs.len() as u32).to_le_bytes().to_vec();
         for (k, v) in pairs {
             for s in [k, v] {
                 d.extend_from_slice(&(s.len() as u32).to_le_bytes());
-                d.extend_from_slice(s.as_bytes());
+                d.extend_from_slice(s);
             }
         }
         d
+    }
+
+    /// A MATL chunk for material `id` with `pairs` (any bytes).
+    pub(crate) fn matl(id: u32, pairs: &[(&[u8], &[u8])]) -> Vec<u8> {
+        let mut content = id.to_le_bytes().to_vec();
+        content.extend(raw_dict(pairs));
+        chunk(b"MATL", &content)
+    }
+
+    /// SIZE and XYZI of a 2x1x1 model of palette entries 1 and 2.
+    pub(crate) fn two_voxels() -> Vec<u8> {
+        let mut out = chunk(b"SIZE", &[2, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0]);
+        out.extend(chunk(b"XYZI", &[2, 0, 0, 0, 0, 0, 0, 1, 1, 0, 0, 2]));
+        out
     }
 
     /// A chunk `id` with `content` and no children.

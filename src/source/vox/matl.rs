@@ -1,4 +1,5 @@
-//! Materials from a `.vox` file's MATL chunks (as dot_vox reads them), for
+//! Materials from a `.vox` file's MATL chunks (as dot_vox reads them, and
+//! the ones it drops for text that is not UTF-8: see `matl_bytes.rs`), for
 //! the palette entries the scene's voxels use.
 //!
 //! Keys read, by `_type`: `_metal`: `_metal` (or the older `_weight`) as
@@ -19,32 +20,33 @@ use std::format;
 use std::string::String;
 use std::vec::Vec;
 
-use dot_vox::Material as VoxMaterial;
-
 use crate::material::{Material, Materials};
+use crate::source::vox::matl_bytes::Matl;
 use crate::source::vox::warnings::Capped;
 
 /// One MATL key's value: `Ok(None)` when absent, `Err` text when it is
-/// not a number.
-fn number(m: &VoxMaterial, key: &str) -> Result<Option<f32>, String> {
-    match m.properties.get(key) {
+/// not UTF-8 or not a number.
+fn number(m: &Matl<'_>, key: &str) -> Result<Option<f32>, String> {
+    let id = m.material.id;
+    if let Some(bytes) = m.bad_values.get(key) {
+        return Err(format!("material {id}: {key} is '{bytes}', not UTF-8 text"));
+    }
+    match m.material.properties.get(key) {
         None => Ok(None),
         Some(text) => match text.trim().parse::<f32>() {
             Ok(v) if v.is_finite() => Ok(Some(v)),
-            _ => Err(format!(
-                "material {}: {key} is '{text}', not a number",
-                m.id
-            )),
+            _ => Err(format!("material {id}: {key} is '{text}', not a number")),
         },
     }
 }
 
 /// Reads materials for the entries `used` marks, warning (one line each,
 /// naming the material id and key: the first 16, then a line counting the
-/// rest) about values that are not numbers, out of range or missing; each
-/// such value falls back to the nearest usable one.
+/// rest) about values that are not UTF-8, not numbers, out of range or
+/// missing, and keys that are not UTF-8; each such value falls back to the
+/// nearest usable one (a `_type` to diffuse), each such key is ignored.
 pub(crate) fn materials(
-    matl: &[VoxMaterial],
+    matl: &[Matl<'_>],
     used: &[bool; 256],
     warnings: &mut Vec<String>,
 ) -> Materials {
@@ -52,12 +54,26 @@ pub(crate) fn materials(
     let mut media = Vec::new();
     let mut lines = Capped::new("MATL");
     for m in matl {
-        let Ok(index) = u8::try_from(m.id) else {
+        let Ok(index) = u8::try_from(m.material.id) else {
             continue;
         };
         if index == 0 || !used[usize::from(index)] {
             continue;
         }
+        for key in &m.bad_keys {
+            lines.push(format!(
+                "material {index}: key '{key}' is not UTF-8 text; ignored"
+            ));
+        }
+        let kind = match m.bad_values.get("_type") {
+            Some(bytes) => {
+                lines.push(format!(
+                    "material {index}: _type is '{bytes}', not UTF-8 text; rendering it diffuse"
+                ));
+                "_diffuse"
+            }
+            None => m.material.material_type().unwrap_or("_diffuse"),
+        };
         // `required`: the key that says how much of the type the material has;
         // without it the type's full strength is used, with a warning.
         let mut get =
@@ -88,7 +104,7 @@ pub(crate) fn materials(
                 default
             };
         let unit = "outside [0, 1]";
-        let material = match m.material_type().unwrap_or("_diffuse") {
+        let material = match kind {
             "_diffuse" => None,
             "_metal" => {
                 let metal = get(&["_metal", "_weight"], true, 1.0, 0.0, 1.0, unit);
@@ -146,4 +162,88 @@ pub(crate) fn materials(
     }
     lines.append_to(warnings);
     table
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::MaterialKind;
+    use crate::source::vox::chunks::write::{file, matl, two_voxels};
+    use crate::source::vox::VoxModel;
+
+    /// A 2x1x1 model of palette entries 1 and 2, then `matls`.
+    fn scene(matls: &[Vec<u8>]) -> VoxModel {
+        let mut children = two_voxels();
+        matls.iter().for_each(|m| children.extend_from_slice(m));
+        VoxModel::from_bytes(&file(&children)).unwrap()
+    }
+
+    fn has(model: &VoxModel, needles: &[&str]) -> bool {
+        model
+            .warnings()
+            .iter()
+            .any(|line| needles.iter().all(|n| line.contains(n)))
+    }
+
+    #[test]
+    fn a_value_not_utf8_warns_and_keeps_the_rest_of_the_material() {
+        let model = scene(&[
+            matl(
+                1,
+                &[
+                    (b"_type", b"_metal"),
+                    (b"_metal", b"0.\xff\xfe"),
+                    (b"_rough", b"0.25"),
+                ],
+            ),
+            matl(2, &[(b"_type", b"_glass"), (b"_trans", b"0.5")]),
+        ]);
+        let w = model.warnings();
+        assert!(
+            has(
+                &model,
+                &["material 1", "_metal", r"'0.\xff\xfe'", "not UTF-8"]
+            ),
+            "{w:?}"
+        );
+        assert_eq!(w.len(), 1, "{w:?}");
+        // The rest of material 1, the value's fallback, and material 2 after it.
+        let m = model.materials();
+        assert_eq!(m.get(1).kind(), MaterialKind::Metal);
+        assert_eq!((m.get(1).metalness(), m.get(1).roughness()), (1.0, 0.25));
+        assert_eq!(m.get(2).kind(), MaterialKind::Glass);
+        assert_eq!(m.get(2).transparency(), 0.5);
+    }
+
+    #[test]
+    fn a_type_or_key_not_utf8_warns_naming_it() {
+        let model = scene(&[
+            matl(1, &[(b"_type", b"_gl\xe4ss"), (b"_trans", b"1")]),
+            matl(
+                2,
+                &[
+                    (b"_type", b"_emit"),
+                    (b"_r\xf6ugh\n", b"0.5"),
+                    (b"_emit", b"2"),
+                ],
+            ),
+        ]);
+        let w = model.warnings();
+        assert!(
+            has(&model, &["material 1", "_type", r"'_gl\xe4ss'", "diffuse"]),
+            "{w:?}"
+        );
+        assert!(
+            has(
+                &model,
+                &["material 2", r"'_r\xf6ugh\n'", "not UTF-8", "ignored"]
+            ),
+            "{w:?}"
+        );
+        assert!(w.iter().all(|line| !line.contains('\n')), "{w:?}");
+        let m = model.materials();
+        assert_eq!(m.get(1).kind(), MaterialKind::Diffuse);
+        assert_eq!(m.get(2).kind(), MaterialKind::Emissive);
+        assert_eq!(m.get(2).emission(), 2.0);
+    }
 }

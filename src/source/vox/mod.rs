@@ -22,6 +22,7 @@ pub(crate) mod camera;
 pub(crate) mod chunks;
 pub(crate) mod index;
 pub(crate) mod matl;
+pub(crate) mod matl_bytes;
 pub(crate) mod rcam;
 pub(crate) mod robj;
 mod rows;
@@ -169,13 +170,13 @@ impl VoxModel {
                 max: IVec3::ONE,
             };
         }
-        model.read_materials(&data.materials);
+        model.read_materials(&matl_bytes::matl_chunks(&data.materials, bytes));
         Ok(model)
     }
 
     /// Materials for the palette entries the placed voxels use (after
     /// overlapping instances merged), and the list of emissive voxels.
-    fn read_materials(&mut self, matl: &[dot_vox::Material]) {
+    fn read_materials(&mut self, matl: &[matl_bytes::Matl<'_>]) {
         let mut used = [false; 256];
         for chunk in &self.chunks {
             for &m in chunk {
@@ -240,8 +241,9 @@ impl VoxModel {
         )
     }
 
-    /// One line per MATL or rCAM value that was not a number, out of range or
-    /// missing (naming the material id and key), per malformed rCAM chunk
+    /// One line per MATL or rCAM value that was not a number (or not UTF-8
+    /// text), out of range or missing (naming the material id and key), per
+    /// MATL key that was not UTF-8 text, per malformed rCAM chunk
     /// and per kind of material not simulated: the first 16 of MATL and of
     /// rCAM, then a line counting the rest ("... and 749 more MATL
     /// warnings").

@@ -8,10 +8,22 @@
 //! that would end the process do the same before it exits. Either way the
 //! previous file is left exactly as it was.
 //!
+//! The directory is opened once and the temporary file created, renamed
+//! and removed in it by name (`dir`), so any path the kernel takes works,
+//! and a file that cannot be replaced (an append-only folder, an immutable
+//! file) is refused when the [`AtomicFile`] is created, before the work
+//! that fills it. A replacing file keeps the old one's mode, and its owner
+//! and group where the process may set them; a new file gets 0666 less the
+//! umask.
+//!
 //! A target that exists and is not a regular file (`/dev/null`, a FIFO, a
 //! device) is written in place instead: a rename would replace it. A
 //! symlink is followed and the file it leads to replaced, so the link stays;
 //! a directory is refused at once.
+//!
+//! Every file replaced is remembered, so that a run ended by an error or a
+//! signal after some of its files were written says which
+//! ([`expect_frames`] names them as a turntable's frames).
 //!
 //! Temporary names are `.` + at most the first [`PREFIX_BYTES`] bytes of
 //! the target's name (cut between characters) + `.` + 8 random ASCII
@@ -19,17 +31,28 @@
 //! bytes, so any file name that fits fits beside it), created exclusively:
 //! a file left by a killed run never blocks the next one.
 
+#[cfg(not(unix))]
+compile_error!(
+    "voxtrace-cli writes its files by name within open directories (openat, renameat): \
+     it builds on Unix only"
+);
+
 mod destination;
-#[cfg(unix)]
+mod dir;
 mod signals;
 
+use std::ffi::OsString;
 use std::fs::File;
 use std::io::{self, BufWriter, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
-use std::sync::{Mutex, MutexGuard, PoisonError};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
 pub use destination::same_file;
 use destination::{destination, Destination};
+use dir::Dir;
+
+use crate::errors::show_path;
+use crate::FrameRange;
 
 /// How much of the target's name starts a temporary name: enough to tell
 /// whose it is, short enough for any name (`NAME_MAX` is 255 bytes).
@@ -38,14 +61,44 @@ pub const PREFIX_BYTES: usize = 24;
 /// How many random letters and digits a temporary name has (62^8 names).
 const RANDOM_CHARS: usize = 8;
 
-/// Temporary files not yet renamed or removed: what a signal must clean up.
-/// Creating, renaming and removing one happen under this lock, so a signal
-/// handler that takes it sees each file either pending or already gone.
-static PENDING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+/// How many taken random names to try past before giving up (each has a
+/// chance of one in 62^8 of being taken, unless someone takes them all).
+const NAME_TRIES: usize = 64;
 
-fn pending() -> MutexGuard<'static, Vec<PathBuf>> {
-    // A panic elsewhere must not stop the cleanup: the list stays valid.
-    PENDING.lock().unwrap_or_else(PoisonError::into_inner)
+/// What a signal or a last error must know of the files: the temporary
+/// files not yet renamed or removed, and the targets already replaced.
+/// Creating, renaming and removing a temporary file happen under this
+/// lock, so a signal handler that takes it sees each file either pending,
+/// or already gone and its target either old or new as `written` says.
+struct Files {
+    pending: Vec<Pending>,
+    written: Vec<PathBuf>,
+    /// The frames the files are, in order, for a turntable.
+    frames: Option<(FrameRange, u32)>,
+}
+
+/// A temporary file: its directory and name there.
+struct Pending {
+    dir: Arc<Dir>,
+    name: OsString,
+}
+
+static FILES: Mutex<Files> = Mutex::new(Files {
+    pending: Vec::new(),
+    written: Vec::new(),
+    frames: None,
+});
+
+fn files() -> MutexGuard<'static, Files> {
+    // A panic elsewhere must not stop the cleanup: the lists stay valid.
+    FILES.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// Says that the files this run commits are, in order, the frames of
+/// `range` of a turntable of `frames`: a run that ends early then names
+/// the frames written and the `--frame-range` that renders the rest.
+pub fn expect_frames(range: FrameRange, frames: u32) {
+    files().frames = Some((range, frames));
 }
 
 /// A file being written that replaces `target` only on [`AtomicFile::commit`].
@@ -55,62 +108,138 @@ pub struct AtomicFile {
     /// written in place.
     target: PathBuf,
     /// The temporary file; `None` when the target is written in place.
-    temp: Option<PathBuf>,
+    temp: Option<Temp>,
     out: Option<BufWriter<File>>,
 }
 
+/// A temporary file and the name it is renamed to, in one directory.
+#[derive(Debug)]
+struct Temp {
+    dir: Arc<Dir>,
+    name: OsString,
+    target_name: OsString,
+}
+
+/// Where a target's bytes go, checked: written in place, or replaced by a
+/// new file in an open directory that can take it.
+enum Prepared {
+    InPlace,
+    Replace {
+        real: PathBuf,
+        dir: Dir,
+        name: OsString,
+    },
+}
+
+/// Everything [`AtomicFile::create`] checks, without creating anything.
+fn prepare(target: &Path) -> io::Result<Prepared> {
+    if target.file_name().is_none() {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            "the path names no file",
+        ));
+    }
+    let real = match destination(target)? {
+        Destination::InPlace => return Ok(Prepared::InPlace),
+        Destination::Replace(real) => real,
+    };
+    let leads = |e: io::Error| {
+        if real == target {
+            e
+        } else {
+            io::Error::new(
+                e.kind(),
+                format!("{e}: the link leads to {}", show_path(&real)),
+            )
+        }
+    };
+    let name = real.file_name().unwrap_or_default().to_os_string();
+    let dir = Dir::open(parent_of(&real)).map_err(leads)?;
+    dir.check_writable().map_err(leads)?;
+    if let Some(why) = dir.unreplaceable(&name) {
+        return Err(leads(io::Error::new(io::ErrorKind::PermissionDenied, why)));
+    }
+    Ok(Prepared::Replace { real, dir, name })
+}
+
 impl AtomicFile {
+    /// Checks that `target` can be written as [`AtomicFile::create`] would
+    /// write it, creating nothing: for the files of a run after its first,
+    /// so that a bad one fails before the work.
+    ///
+    /// # Errors
+    /// As [`AtomicFile::create`]'s, except the ones only creating the file
+    /// shows (a full disk).
+    pub fn check(target: &Path) -> io::Result<()> {
+        prepare(target).map(drop)
+    }
+
     /// Creates the temporary file beside `target` (nothing happens to
     /// `target` yet), or opens a special file for writing in place, so that
     /// a bad path fails now rather than after the work that fills the file.
     ///
     /// # Errors
     /// `target` names no file or a directory, its directory cannot hold a
-    /// new file, or a special file cannot be opened.
+    /// new file, the file or its directory cannot be replaced (immutable,
+    /// append-only), or a special file cannot be opened.
     pub fn create(target: &Path) -> io::Result<AtomicFile> {
-        if target.file_name().is_none() {
-            return Err(io::Error::new(
-                io::ErrorKind::InvalidInput,
-                "the path names no file",
-            ));
-        }
-        match destination(target)? {
-            Destination::InPlace => {
+        let (real, dir, name) = match prepare(target)? {
+            Prepared::InPlace => {
                 // No O_TRUNC needed on a device or FIFO; harmless there, and
                 // what a shell's `>` does to a file reached by its fd link.
                 let file = File::options().write(true).truncate(true).open(target)?;
-                Ok(AtomicFile {
+                return Ok(AtomicFile {
                     target: target.to_path_buf(),
                     temp: None,
                     out: Some(BufWriter::new(file)),
-                })
+                });
             }
-            Destination::Replace(real) => {
-                let mut list = pending();
-                let (file, temp) = temp_beside(&real).map_err(|e| {
-                    if real == target {
-                        e
-                    } else {
-                        io::Error::new(
-                            e.kind(),
-                            format!("{e}: the link leads to {}", real.display()),
-                        )
-                    }
-                })?;
-                list.push(temp.clone());
-                Ok(AtomicFile {
-                    target: real,
-                    temp: Some(temp),
-                    out: Some(BufWriter::new(file)),
-                })
+            Prepared::Replace { real, dir, name } => (real, Arc::new(dir), name),
+        };
+        let keep = dir.keep_of(&name);
+        let mut random = fastrand::Rng::with_seed(unpredictable_seed()?);
+        for _ in 0..NAME_TRIES {
+            let letters: String = (0..RANDOM_CHARS).map(|_| random.alphanumeric()).collect();
+            let temp = dir::temp_name(&name, PREFIX_BYTES, &letters);
+            let mut list = files();
+            match dir.create_new(&temp, keep) {
+                Ok(file) => {
+                    list.pending.push(Pending {
+                        dir: Arc::clone(&dir),
+                        name: temp.clone(),
+                    });
+                    return Ok(AtomicFile {
+                        target: real,
+                        temp: Some(Temp {
+                            dir,
+                            name: temp,
+                            target_name: name,
+                        }),
+                        out: Some(BufWriter::new(file)),
+                    });
+                }
+                Err(e) if e.kind() == io::ErrorKind::AlreadyExists => {}
+                Err(e) if real == target => return Err(e),
+                Err(e) => {
+                    return Err(io::Error::new(
+                        e.kind(),
+                        format!("{e}: the link leads to {}", show_path(&real)),
+                    ))
+                }
             }
         }
+        Err(io::Error::new(
+            io::ErrorKind::AlreadyExists,
+            format!("{NAME_TRIES} random temporary names beside it were all taken"),
+        ))
     }
 
     /// The temporary file, `None` when the target is written in place.
     #[must_use]
-    pub fn temp_path(&self) -> Option<&Path> {
-        self.temp.as_deref()
+    pub fn temp_path(&self) -> Option<PathBuf> {
+        self.temp
+            .as_ref()
+            .map(|temp| parent_of(&self.target).join(&temp.name))
     }
 
     /// Whether the bytes go to a terminal (a special file written in
@@ -126,7 +255,8 @@ impl AtomicFile {
     /// Flushes and syncs the written bytes, then renames the temporary file
     /// over the target and syncs the directory, so that after a crash the
     /// target is either the old file or the whole new one. In place, only
-    /// flushes (and syncs a regular file).
+    /// flushes (and syncs a regular file). Either way the target counts as
+    /// written from then on, for a message that ends the run.
     ///
     /// # Errors
     /// Writing, syncing or renaming failed; the target is then unchanged and
@@ -142,49 +272,41 @@ impl AtomicFile {
             if file.metadata()?.is_file() {
                 file.sync_all()?;
             }
+            files().written.push(self.target.clone());
             return Ok(());
         };
         let synced = file.and_then(|file| file.sync_all());
-        let mut list = pending();
-        let renamed = synced.and_then(|()| std::fs::rename(temp, &self.target));
+        // The rename and the record of it are one step for a signal.
+        let mut list = files();
+        let renamed = synced.and_then(|()| temp.dir.rename(&temp.name, &temp.target_name));
         if renamed.is_err() {
-            let _ = std::fs::remove_file(temp);
+            let _ = temp.dir.remove(&temp.name);
         }
-        list.retain(|p| p != temp);
+        list.pending.retain(|p| !temp.is(p));
+        if renamed.is_ok() {
+            list.written.push(self.target.clone());
+        }
         drop(list);
         renamed?;
-        // The rename is in the directory: sync it too (not possible on every
-        // platform, and the file itself is already safe, so best effort).
-        if let Ok(dir) = File::open(parent_of(&self.target)) {
-            let _ = dir.sync_all();
-        }
+        // The rename is in the directory: sync it too (the file itself is
+        // already safe, so best effort).
+        let _ = temp.dir.sync();
         Ok(())
     }
 }
 
-/// A new, exclusively created temporary file in `target`'s directory,
-/// readable as a new file would be (0666 less the umask, where tempfile's
-/// own files are 0600, a mode the output would keep), and its path.
-/// tempfile picks the random names and retries one that exists.
-fn temp_beside(target: &Path) -> io::Result<(File, PathBuf)> {
-    let name = target.file_name().unwrap_or_default().to_string_lossy();
-    let mut end = 0;
-    for (at, c) in name.char_indices() {
-        if at + c.len_utf8() > PREFIX_BYTES {
-            break;
-        }
-        end = at + c.len_utf8();
+impl Temp {
+    /// Whether `pending` is this temporary file.
+    fn is(&self, pending: &Pending) -> bool {
+        Arc::ptr_eq(&self.dir, &pending.dir) && self.name == pending.name
     }
-    let prefix = format!(".{}.", &name[..end]);
-    let temp = tempfile::Builder::new()
-        .prefix(&prefix)
-        .suffix(".tmp")
-        .rand_bytes(RANDOM_CHARS)
-        .make_in(parent_of(target), |path| {
-            File::options().write(true).create_new(true).open(path)
-        })?;
-    let (file, path) = temp.keep().map_err(|e| e.error)?;
-    Ok((file, path))
+}
+
+/// A seed no other process can guess, so that temporary names are
+/// unpredictable (they are created exclusively, so a guessed one would
+/// only cost a retry).
+fn unpredictable_seed() -> io::Result<u64> {
+    getrandom::u64().map_err(|e| io::Error::other(format!("no random seed: {e}")))
 }
 
 impl Write for AtomicFile {
@@ -218,9 +340,9 @@ impl Drop for AtomicFile {
     /// (a special file keeps what was written into it).
     fn drop(&mut self) {
         if let (Some(_), Some(temp)) = (self.out.take(), &self.temp) {
-            let mut list = pending();
-            let _ = std::fs::remove_file(temp);
-            list.retain(|p| p != temp);
+            let mut list = files();
+            let _ = temp.dir.remove(&temp.name);
+            list.pending.retain(|p| !temp.is(p));
         }
     }
 }
@@ -248,17 +370,51 @@ pub fn write_atomic(
     file.commit().map_err(|e| e.to_string())
 }
 
+/// What the files written so far are, for a run that ends early: `None`
+/// when none is, else `wrote render.png`, or for a turntable `wrote frames
+/// 1-2 of 5 (s_0001.png to s_0002.png); --frame-range 3-5 renders the
+/// rest`.
+fn written_summary(files: &Files) -> Option<String> {
+    let written = &files.written;
+    let (first, last) = (written.first()?, written.last()?);
+    let count = written.len();
+    let (first, last) = (show_path(first), show_path(last));
+    let Some((range, frames)) = files.frames else {
+        return Some(match count {
+            1 => format!("wrote {first}"),
+            _ => format!("wrote {count} files, {first} to {last}"),
+        });
+    };
+    let done = range.first + (count as u32 - 1);
+    let mut summary = if count == 1 {
+        format!("wrote frame {done} of {frames} ({first})")
+    } else {
+        format!(
+            "wrote frames {}-{done} of {frames} ({first} to {last})",
+            range.first
+        )
+    };
+    if done < range.last {
+        summary.push_str(&format!(
+            "; --frame-range {}-{} renders the rest",
+            done + 1,
+            range.last
+        ));
+    }
+    Some(summary)
+}
+
 /// On the first signal that would end the process (SIGINT, SIGTERM,
 /// SIGHUP, SIGQUIT, SIGUSR1/2, the timers', the resource limits' and on
 /// Linux the real-time ones; not the faults, nor the ignored SIGPIPE): removes every
 /// pending temporary file, prints one `error:` line naming the signal and
-/// exits with 128 + its number (130 for SIGINT, 143 for SIGTERM), the
-/// shell's convention. Work in progress is dropped; no output file is
-/// touched. Call once, early; later calls do nothing.
+/// the files already written, and exits with 128 + its number (130 for
+/// SIGINT, 143 for SIGTERM), the shell's convention. Work in progress is
+/// dropped; no output file is touched. Call once, early; later calls do
+/// nothing.
 ///
 /// # Errors
 /// The handler cannot be installed.
-#[cfg(unix)]
 pub fn remove_on_signal() -> Result<(), String> {
     use std::sync::OnceLock;
     static INSTALLED: OnceLock<Result<(), String>> = OnceLock::new();
@@ -272,9 +428,9 @@ pub fn remove_on_signal() -> Result<(), String> {
                     if let Some(signal) = caught.forever().next() {
                         // Held until exit: no file can be created or renamed
                         // after the cleanup, and no other error line printed.
-                        let list = pending();
-                        for temp in list.iter() {
-                            let _ = std::fs::remove_file(temp);
+                        let list = files();
+                        for temp in &list.pending {
+                            let _ = temp.dir.remove(&temp.name);
                         }
                         // On a terminal the progress bar may hold the line:
                         // clear it, so that the error starts its own.
@@ -284,8 +440,12 @@ pub fn remove_on_signal() -> Result<(), String> {
                         } else {
                             ""
                         };
+                        let kept = match written_summary(&list) {
+                            None => "old ones kept".to_string(),
+                            Some(written) => format!("every other file kept as it was; {written}"),
+                        };
                         crate::say!(
-                            "{clear}error: interrupted by {}; unfinished files removed, old ones kept",
+                            "{clear}error: interrupted by {}; unfinished files removed, {kept}",
                             signals::name(signal)
                         );
                         std::process::exit(128 + signal);
@@ -297,21 +457,19 @@ pub fn remove_on_signal() -> Result<(), String> {
         .clone()
 }
 
-/// Signals other than Ctrl-C are a Unix notion; elsewhere nothing is
-/// installed and a dropped [`AtomicFile`] still cleans up after errors.
-#[cfg(not(unix))]
-pub fn remove_on_signal() -> Result<(), String> {
-    Ok(())
-}
-
 /// Prints `error: MESSAGE` on one line (control characters escaped, so a
-/// quoted path or value cannot end the line or forge another) and exits 2,
-/// holding the lock that a caught signal's cleanup takes: a signal
-/// arriving at the same moment (SIGXFSZ comes with the write that fails)
-/// cannot add a second line. Call it with every [`AtomicFile`] dropped.
+/// quoted path or value cannot end the line or forge another), followed by
+/// the files the run already wrote if any, and exits 2, holding the lock
+/// that a caught signal's cleanup takes: a signal arriving at the same
+/// moment (SIGXFSZ comes with the write that fails) cannot add a second
+/// line. Call it with every [`AtomicFile`] dropped.
 pub fn exit_with_error(message: &str) -> ! {
-    let _held = pending();
-    crate::say!("error: {}", crate::errors::escape_controls(message));
+    let held = files();
+    let written = written_summary(&held).map_or(String::new(), |w| format!("; {w}"));
+    crate::say!(
+        "error: {}{written}",
+        crate::errors::escape_controls(message)
+    );
     std::process::exit(2)
 }
 
@@ -350,7 +508,10 @@ mod tests {
         file.commit().unwrap();
         assert_eq!(std::fs::read(&target).unwrap(), b"new contents");
         assert_eq!(names(&dir), ["out.png"]);
-        assert!(!pending().contains(&temp));
+        assert!(!files()
+            .pending
+            .iter()
+            .any(|p| p.name == temp.file_name().unwrap()));
     }
 
     #[test]
@@ -392,8 +553,8 @@ mod tests {
             let name = format!("{}.png", "a".repeat(len - 4));
             let target = dir.join(&name);
             let file = AtomicFile::create(&target).unwrap();
-            let temp = file.temp_path().unwrap().file_name().unwrap();
-            let temp = temp.to_str().unwrap().to_string();
+            let temp = file.temp_path().unwrap();
+            let temp = temp.file_name().unwrap().to_str().unwrap().to_string();
             assert!(
                 temp.len() <= 1 + PREFIX_BYTES + 1 + RANDOM_CHARS + 4,
                 "{temp}"
@@ -411,13 +572,68 @@ mod tests {
         // A multi-byte name is cut at a character boundary.
         let target = dir.join("éééééééééééééééééé.png");
         let file = AtomicFile::create(&target).unwrap();
-        let temp = file.temp_path().unwrap().file_name().unwrap();
-        assert!(temp.to_str().unwrap().starts_with(".éééééééééééé."));
+        let temp = file.temp_path().unwrap();
+        let temp = temp.file_name().unwrap().to_str().unwrap();
+        assert!(temp.starts_with(".éééééééééééé."), "{temp}");
     }
 
     #[test]
     fn an_unwritable_directory_fails_at_create() {
         assert!(AtomicFile::create(Path::new("/nonexistent-dir/x.png")).is_err());
         assert!(AtomicFile::create(Path::new("/")).is_err());
+    }
+
+    fn written(count: u32, frames: Option<(FrameRange, u32)>) -> Files {
+        Files {
+            pending: Vec::new(),
+            written: (0..count)
+                .map(|k| PathBuf::from(format!("s_{k}.png")))
+                .collect(),
+            frames,
+        }
+    }
+
+    #[test]
+    fn what_was_written_is_named_and_nothing_when_nothing_was() {
+        assert_eq!(written_summary(&written(0, None)), None);
+        assert_eq!(
+            written_summary(&written(1, None)).as_deref(),
+            Some("wrote s_0.png")
+        );
+        assert_eq!(
+            written_summary(&written(3, None)).as_deref(),
+            Some("wrote 3 files, s_0.png to s_2.png")
+        );
+        let range = FrameRange { first: 3, last: 5 };
+        assert_eq!(
+            written_summary(&written(1, Some((range, 9)))).as_deref(),
+            Some("wrote frame 3 of 9 (s_0.png); --frame-range 4-5 renders the rest")
+        );
+        assert_eq!(
+            written_summary(&written(3, Some((range, 9)))).as_deref(),
+            Some("wrote frames 3-5 of 9 (s_0.png to s_2.png)")
+        );
+    }
+
+    proptest::proptest! {
+        /// Whatever part of a turntable's range was written, the frames
+        /// named and the range to resume with cover the range exactly.
+        #[test]
+        fn the_frames_written_and_the_rest_make_the_range(
+            first in 1u32..1000, len in 1u32..50, done in 1u32..50,
+        ) {
+            let done = done.min(len);
+            let range = FrameRange { first, last: first + len - 1 };
+            let summary = written_summary(&written(done, Some((range, range.last + 3)))).unwrap();
+            let last_done = first + done - 1;
+            let named = if done == 1 {
+                format!("wrote frame {first} of ")
+            } else {
+                format!("wrote frames {first}-{last_done} of ")
+            };
+            proptest::prop_assert!(summary.starts_with(&named), "{}", summary);
+            let rest = format!("; --frame-range {}-{} renders the rest", last_done + 1, range.last);
+            proptest::prop_assert_eq!(summary.ends_with(&rest), last_done < range.last, "{}", summary);
+        }
     }
 }
