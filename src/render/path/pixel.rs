@@ -130,7 +130,6 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
                 Vec3::ZERO
             };
             pixel.add(counted);
-            pixel.taken += 1;
             if let Some(settings) = &adaptive {
                 pixel.tally.add(counted);
                 pixel.done = pixel.tally.done(pixel.taken, settings);
