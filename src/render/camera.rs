@@ -9,16 +9,30 @@ use crate::frustum::Frustum;
 use crate::geom::Ray;
 use crate::math::tan32;
 use crate::render::view::{basis, unit, Projection};
+use crate::scene::PACKET;
 
 #[cfg(feature = "packets")]
 mod block;
-#[cfg(feature = "packets")]
-pub(crate) use block::{block_pixel, BLOCK_HEIGHT, BLOCK_WIDTH};
 mod refusal;
 #[cfg(test)]
 mod refusal_tests;
 
 use refusal::{orthographic_refusal, perspective_refusal, OrthoPlane, FAR_APART};
+
+/// Width of a block of pixels.
+pub(crate) const BLOCK_WIDTH: u32 = 8;
+/// Height of a block of pixels: [`PACKET`] lanes in all.
+pub(crate) const BLOCK_HEIGHT: u32 = 4;
+const _: () = assert!((BLOCK_WIDTH * BLOCK_HEIGHT) as usize == PACKET);
+
+/// The pixel of lane `lane` of the block from `corner`: rows of
+/// [`BLOCK_WIDTH`], lane 0 at the corner.
+#[inline]
+pub(crate) fn block_pixel(corner: (u32, u32), lane: usize) -> (u32, u32) {
+    let lane = lane as u32;
+    let (dx, dy) = (lane % BLOCK_WIDTH, lane / BLOCK_WIDTH);
+    (corner.0.wrapping_add(dx), corner.1.wrapping_add(dy))
+}
 
 /// The seven camera parameters of the seed paper.
 #[derive(Clone, Copy, Debug, PartialEq)]

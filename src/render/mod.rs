@@ -5,9 +5,9 @@
 //! for exactly those effects (over the shading math of [`shade`], the sample
 //! patterns of [`sampling`] and the seed paper's [`debug_view`]); the
 //! [`scalar`] renderer runs it over rows, crops or whole frames into a
-//! caller's `&mut [u32]`, counting rays in [`stats`]. A frame of one ray
-//! per pixel has its camera rays traced in packets (`packets`, feature
-//! `packets`).
+//! caller's `&mut [u32]`, counting rays in [`stats`]. The flat and lit
+//! looks make their pixels 8x4 at a time, their rays traced in packets
+//! (`packets`, feature `packets`).
 //!
 //! Scenes with metal, glass or emitters ([`plan`] decides, from the
 //! materials the scene's voxels use) get the path tracer (`path`, feature

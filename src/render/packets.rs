@@ -36,15 +36,14 @@ pub(super) fn packets_pay(camera: &Camera, t_start: f32) -> bool {
 }
 
 /// The pixels of `tile` (of `rect`; the tile's corner and size are
-/// offsets inside `rect`) for a [`Kernel::in_blocks`] kernel: its whole
-/// 8x4 blocks by [`Kernel::block`], the pixels of partial blocks by
-/// [`Kernel::pixel`], handed to `put(dx, dy, rgba)` at their offsets
+/// offsets inside `rect`) for a [`Kernel::in_blocks`] kernel, 8x4 at a
+/// time by [`Kernel::block`] (a block the tile's edge cuts, by the mask
+/// of its lanes inside), handed to `put(dx, dy, rgba)` at their offsets
 /// inside `rect`.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
     kernel: &K,
     scene: &'s S,
-    camera: &Camera,
     rect: Rect,
     tile: Rect,
     t_start: f32,
@@ -57,20 +56,11 @@ pub(super) fn in_packets<'s, K: Kernel, S: Scene + ?Sized>(
     for by in (tile.y..dy1).step_by(BLOCK_HEIGHT as usize) {
         for bx in (tile.x..dx1).step_by(BLOCK_WIDTH as usize) {
             let (width, height) = ((dx1 - bx).min(BLOCK_WIDTH), (dy1 - by).min(BLOCK_HEIGHT));
-            if (width, height) != (BLOCK_WIDTH, BLOCK_HEIGHT) {
-                // A partial block: the kernel's own pixels.
-                for dy in by..by + height {
-                    for dx in bx..bx + width {
-                        let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
-                        let (rgba, rays) = kernel.pixel(scene, x, y, t_start, memory);
-                        put(dx, dy, rgba);
-                        *stats += rays;
-                    }
-                }
-                continue;
-            }
+            // `height` rows of `width` lanes each.
+            let row = u32::MAX >> (32 - width);
+            let lanes = (0..height).fold(0, |lanes, dy| lanes | row << (dy * BLOCK_WIDTH));
             let corner = (rect.x.wrapping_add(bx), rect.y.wrapping_add(by));
-            kernel.block(scene, camera, corner, t_start, memory, |i, rgba, rays| {
+            kernel.block(scene, corner, lanes, t_start, memory, |i, rgba, rays| {
                 let (dx, dy) = (i as u32 % BLOCK_WIDTH, i as u32 / BLOCK_WIDTH);
                 put(bx + dx, by + dy, rgba);
                 *stats += rays;

@@ -26,14 +26,21 @@ pub(crate) fn secondary(ray: &Ray, hit: &Hit, dir: Vec3) -> Option<Ray> {
     let face = hit.face?;
     let axis = face.axis();
     let normal = face.normal()[axis];
-    // The plane of the face, and a step off it that survives rounding at
-    // any coordinate: 1/256, or one unit in the last place far out.
+    // The plane of the face, and a step off it.
     let plane = (hit.pos[axis] + i32::from(normal > 0)) as f32;
-    let step = (1.0 / 256.0f32).max(plane.abs() * f32::EPSILON);
+    let step = nudge(plane);
     let cell = hit.pos.as_vec3();
     let mut origin = ray.at(hit.t).clamp(cell, cell + 1.0);
     origin[axis] = plane + normal as f32 * step;
     Ray::new(origin, dir).ok()
+}
+
+/// A step off a plane at coordinate `plane` that survives rounding there:
+/// 1/256, or one unit in the last place far out. Every ray that leaves a
+/// surface (a secondary ray, a path through glass) starts this far off it.
+#[inline]
+pub(crate) fn nudge(plane: f32) -> f32 {
+    (1.0 / 256.0f32).max(plane.abs() * f32::EPSILON)
 }
 
 /// `local` (around `+z`) turned to the hemisphere around `face`'s normal.

@@ -4,6 +4,9 @@
 
 use glam::{Vec2, Vec3};
 
+use crate::geom::Ray;
+use crate::render::camera::Camera;
+
 /// Mixes pixel coordinates and a stream number into 32 well-spread bits
 /// (a fixed integer hash; no state, no randomness).
 #[inline]
@@ -34,6 +37,29 @@ pub(crate) fn r2(index: u32, key: u32) -> Vec2 {
     // The top 24 bits as an exact f32 in [0, 1).
     let unit = |v: u32| (v >> 8) as f32 * (1.0 / 16_777_216.0);
     Vec2::new(unit(x), unit(y))
+}
+
+/// Where sample `sample` of pixel `(x, y)` goes through the pixel, in a
+/// frame of several samples per pixel: a point of the pixel's own
+/// sequence, as an offset from its corner.
+#[inline]
+#[must_use]
+pub(crate) fn sample_offset((x, y): (u32, u32), sample: u32) -> Vec2 {
+    r2(sample, pixel_key(x, y, 0))
+}
+
+/// The camera ray of pixel `(x, y)`: through its center, or through the
+/// point of sample `sample` ([`sample_offset`]) when one is given.
+#[inline]
+#[must_use]
+pub(crate) fn sample_ray(camera: &Camera, (x, y): (u32, u32), sample: Option<u32>) -> Ray {
+    match sample {
+        None => camera.get_ray(x, y),
+        Some(s) => {
+            let offset = sample_offset((x, y), s);
+            camera.get_ray_at(x as f32 + offset.x, y as f32 + offset.y)
+        }
+    }
 }
 
 /// A cosine-weighted direction on the hemisphere around `+z`, from a point

@@ -1,9 +1,10 @@
 //! Primary rays in tiles: the pixels of a rectangle, a square of
 //! [`TILE`] x [`TILE`] at a time, each square's rays starting at the
 //! distance its frustum of rays is known to be clear ([`Scene::clear_distance`]).
-//! A kernel whose pixels are one ray each has its tiles' rays traced 32 at
-//! a time, an 8x4 block per packet ([`Scene::trace_packet`],
-//! `render/packets.rs`), in wider tiles.
+//! A kernel that makes its pixels 8x4 at a time (`Kernel::in_blocks`:
+//! the flat and lit looks) has its tiles' rays traced 32 at a time, a
+//! block per packet ([`Scene::trace_packet`], `render/packets.rs`), in
+//! wider tiles.
 //!
 //! The clear distance only moves where walks begin, never what they hit, so
 //! any tiling (a crop, a band of rows on one thread, a single pixel) gives
@@ -40,8 +41,8 @@ fn tile_width(kernel: &impl Kernel) -> u32 {
 }
 
 /// Renders every pixel of `rect` with `kernel`, tile by tile (row-major
-/// tiles; inside a tile, row-major pixels or, for a kernel whose pixels
-/// are one ray, row-major 8x4 blocks), handing `put(dx, dy, rgba)` each
+/// tiles; inside a tile, row-major pixels or, for a kernel that makes
+/// them 8x4 at a time, row-major blocks), handing `put(dx, dy, rgba)` each
 /// pixel at its offset inside `rect`. Allocates nothing.
 pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
     kernel: &K,
@@ -79,7 +80,7 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
             if kernel.in_blocks() && beam && packets_pay(camera, t_start) {
                 let memory = &mut memory;
                 in_packets(
-                    kernel, scene, camera, rect, offsets, t_start, memory, &mut put, &mut stats,
+                    kernel, scene, rect, offsets, t_start, memory, &mut put, &mut stats,
                 );
                 continue;
             }

@@ -110,6 +110,11 @@ fn flip_a_pixel_byte(png: &[u8]) -> Vec<u8> {
     }
     let mut writer = encoder.write_header().unwrap();
     writer.write_image_data(&pixels).unwrap();
+    // The digest after the image data (the decoder has read the chunks
+    // before it only), where voxtrace writes it.
+    let digest = common::parts::text_of(png, "voxtrace-digest");
+    let digest = png::text_metadata::TEXtChunk::new("voxtrace-digest", digest);
+    writer.write_text_chunk(&digest).unwrap();
     writer.finish().unwrap();
 
     let idat = stored.windows(4).position(|w| w == b"IDAT").unwrap() - 4;

@@ -5,23 +5,8 @@ use glam::{Vec2, Vec3A, Vec4};
 
 use crate::geom::Ray;
 use crate::math::per_axis;
-use crate::render::camera::Camera;
+use crate::render::camera::{block_pixel, Camera};
 use crate::scene::PACKET;
-
-/// Width of a block of pixels.
-pub(crate) const BLOCK_WIDTH: u32 = 8;
-/// Height of a block of pixels: [`PACKET`] rays in all.
-pub(crate) const BLOCK_HEIGHT: u32 = 4;
-const _: () = assert!((BLOCK_WIDTH * BLOCK_HEIGHT) as usize == PACKET);
-
-/// The pixel of lane `lane` of the block from `corner`: rows of
-/// [`BLOCK_WIDTH`].
-#[inline]
-pub(crate) fn block_pixel(corner: (u32, u32), lane: usize) -> (u32, u32) {
-    let lane = lane as u32;
-    let (dx, dy) = (lane % BLOCK_WIDTH, lane / BLOCK_WIDTH);
-    (corner.0.wrapping_add(dx), corner.1.wrapping_add(dy))
-}
 
 impl Camera {
     /// The rays through the centers of the 8x4 pixels from `(i, j)`: lane
@@ -131,56 +116,17 @@ mod tests {
     use glam::{Vec2, Vec3};
     use proptest::prelude::*;
 
-    use super::block_pixel;
-    use crate::render::camera::{Camera, CameraSettings};
+    use crate::geom::Ray;
+    use crate::render::camera::{block_pixel, Camera, CameraSettings};
     use crate::render::view::Projection;
 
     proptest! {
         /// Every lane of a block is the lone ray of its pixel, bit for bit,
-        /// for cameras anywhere, of any field of view and projection, at
-        /// any block of the frame (the last pixels of the largest frame
-        /// too).
+        /// through its center or any point of it, for cameras anywhere, of
+        /// any field of view and projection, at any block of the frame (the
+        /// centers of the last pixels of the largest frame too).
         #[test]
         fn a_blocks_rays_are_the_lone_rays(
-            from in prop::array::uniform3(-3000.0f32..3000.0),
-            at in prop::array::uniform3(-50.0f32..50.0),
-            fov in 1.0f32..170.0,
-            size in (1u32..5000, 1u32..5000),
-            block in (any::<u32>(), any::<u32>()),
-            ortho in prop::option::of(0.5f32..500.0),
-        ) {
-            let settings = CameraSettings {
-                width: size.0,
-                height: size.1,
-                vertical_fov: fov,
-                lookfrom: Vec3::from(from),
-                lookat: Vec3::from(at),
-                projection: ortho.map_or(Projection::Perspective, |height| {
-                    Projection::Orthographic { height }
-                }),
-                ..CameraSettings::default()
-            };
-            let Ok(camera) = Camera::new(settings) else {
-                return Ok(());
-            };
-            let (i, j) = (block.0 % (size.0 + 8), block.1 % (size.1 + 8));
-            let (i, j) = if block.0 % 7 == 0 { (u32::MAX - 2, u32::MAX - 1) } else { (i, j) };
-            let rays = camera.block_rays(i, j);
-            for (k, ray) in rays.iter().enumerate() {
-                let (x, y) = (i.wrapping_add(k as u32 % 8), j.wrapping_add(k as u32 / 8));
-                let lone = camera.get_ray(x, y);
-                let bits = |r: &crate::geom::Ray| {
-                    let (o, d, inv) = r.lanes();
-                    [o, d, inv].map(|v| v.to_array().map(f32::to_bits))
-                };
-                prop_assert_eq!(bits(ray), bits(&lone), "pixel ({}, {})", x, y);
-            }
-        }
-
-        /// Every lane of a block of sample rays is the lone ray through
-        /// its point, bit for bit, for any points of the pixels.
-        #[test]
-        fn a_blocks_sample_rays_are_the_lone_rays(
             from in prop::array::uniform3(-3000.0f32..3000.0),
             at in prop::array::uniform3(-50.0f32..50.0),
             fov in 1.0f32..170.0,
@@ -203,17 +149,22 @@ mod tests {
             let Ok(camera) = Camera::new(settings) else {
                 return Ok(());
             };
+            let bits = |r: &Ray| {
+                let (o, d, inv) = r.lanes();
+                [o, d, inv].map(|v| v.to_array().map(f32::to_bits))
+            };
             let corner = (block.0 % (size.0 + 8), block.1 % (size.1 + 8));
+            let last = (u32::MAX - 2, u32::MAX - 1);
+            let centers = if block.0 % 7 == 0 { last } else { corner };
             let offset = |k: usize| Vec2::new(offsets[k].0, offsets[k].1);
-            let rays = camera.block_sample_rays(corner, offset);
-            for (k, ray) in rays.iter().enumerate() {
+            let rays = camera.block_rays(centers.0, centers.1);
+            let samples = camera.block_sample_rays(corner, offset);
+            for (k, (ray, sample)) in rays.iter().zip(&samples).enumerate() {
+                let (x, y) = block_pixel(centers, k);
+                prop_assert_eq!(bits(ray), bits(&camera.get_ray(x, y)), "pixel ({}, {})", x, y);
                 let (x, y) = block_pixel(corner, k);
                 let lone = camera.get_ray_at(x as f32 + offset(k).x, y as f32 + offset(k).y);
-                let bits = |r: &crate::geom::Ray| {
-                    let (o, d, inv) = r.lanes();
-                    [o, d, inv].map(|v| v.to_array().map(f32::to_bits))
-                };
-                prop_assert_eq!(bits(ray), bits(&lone), "pixel ({}, {})", x, y);
+                prop_assert_eq!(bits(sample), bits(&lone), "a point of pixel ({}, {})", x, y);
             }
         }
     }

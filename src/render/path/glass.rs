@@ -14,7 +14,7 @@ use crate::geom::{Face, Ray};
 use crate::material::{Material, MaterialKind, Materials};
 use crate::render::path::bsdf::{fresnel_dielectric, microfacet, reflect, refract};
 use crate::render::path::Rng;
-use crate::render::rays::secondary;
+use crate::render::rays::{nudge, secondary};
 use crate::render::stats::RayStats;
 use crate::scene::{Hit, Scene};
 
@@ -31,12 +31,6 @@ pub(super) enum Glass {
     Inside { ray: Ray, hit: Hit, weight: Vec3 },
     /// Absorbed, or out of bounces.
     Lost,
-}
-
-/// A step off a plane at coordinate `plane` that survives rounding there.
-#[inline]
-fn nudge(plane: f32) -> f32 {
-    (1.0 / 256.0f32).max(plane.abs() * f32::EPSILON)
 }
 
 /// The path meeting the glass voxel of `hit` along `ray`.

@@ -7,7 +7,7 @@ use glam::Vec3;
 
 use crate::render::options::Background;
 use crate::render::rounds::{samples_per_round, PixelSamples};
-use crate::render::sampling::{pixel_key, r2};
+use crate::render::sampling::sample_ray;
 use crate::render::shade::{pack_mean, to_u8};
 use crate::render::stats::RayStats;
 use crate::scene::{Scene, WalkMemory};
@@ -102,13 +102,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
         while !pixel.done && pixel.taken < end {
             let s = pixel.taken;
             // The anti-aliasing offsets of the face-shaded look.
-            let ray = if centered {
-                self.camera.get_ray(x, y)
-            } else {
-                let offset = r2(s, pixel_key(x, y, 0));
-                self.camera
-                    .get_ray_at(x as f32 + offset.x, y as f32 + offset.y)
-            };
+            let ray = sample_ray(self.camera, (x, y), (!centered).then_some(s));
             let mut rng = Rng {
                 x,
                 y,

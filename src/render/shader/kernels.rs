@@ -9,7 +9,6 @@
 
 use glam::U8Vec3;
 
-use crate::geom::Ray;
 use crate::render::debug_view::{box_color, enters_near_edge};
 #[cfg(feature = "path")]
 use crate::render::path::{Path, PathSetup};
@@ -18,12 +17,12 @@ use crate::render::rays::primary;
 use crate::render::rounds::PixelSamples;
 use crate::render::shade::{pack, sky, FLAT_SKY};
 use crate::render::shader::lit::Lit;
+use crate::render::shader::{each_lane, lane_rays, trace_rays, LANES};
 use crate::render::shader::{FrameJob, Kernel, Shader};
 #[cfg(feature = "path")]
 use crate::render::shader::{Resumable, RoundsJob};
 use crate::render::stats::RayStats;
-use crate::scene::WalkMemory;
-use crate::scene::{Hit, Scene};
+use crate::scene::{Hit, Reach, Scene, WalkMemory};
 
 impl<'m> Shader<'_, 'm> {
     /// Runs `job` with the kernel compiled for this frame's effects.
@@ -158,7 +157,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Resumable
     }
 }
 
-/// The unshaded look.
+/// The unshaded look: each pixel its camera ray's voxel color.
 pub(super) struct Flat<'s, 'c, 'm>(pub(super) &'s Shader<'c, 'm>);
 
 impl Kernel for Flat<'_, '_, '_> {
@@ -171,8 +170,9 @@ impl Kernel for Flat<'_, '_, '_> {
         t_start: f32,
         memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats) {
-        let ray = self.0.camera.get_ray(x, y);
-        self.ray_pixel(scene, &ray, (x, y), t_start, memory)
+        // (Too cheap a pixel to fill a block's arrays for.)
+        let (ray, reach) = (self.0.camera.get_ray(x, y), Reach::after(t_start));
+        self.color(scene.trace_with(&ray, reach, memory, None).hit)
     }
 
     #[cfg(feature = "packets")]
@@ -180,15 +180,32 @@ impl Kernel for Flat<'_, '_, '_> {
         true
     }
 
+    /// The lanes' camera rays through their pixels' centers, traced
+    /// together, each hit's color.
     #[inline]
-    fn shade<'s, S: Scene + ?Sized>(
+    fn block<'s, S: Scene + ?Sized>(
         &self,
-        _: &'s S,
-        _: &Ray,
-        hit: Option<Hit>,
-        _: (u32, u32),
-        _: &mut WalkMemory<'s>,
-    ) -> (u32, RayStats) {
+        scene: &'s S,
+        corner: (u32, u32),
+        lanes: u32,
+        t_start: f32,
+        memory: &mut WalkMemory<'s>,
+        mut put: impl FnMut(usize, u32, RayStats),
+    ) {
+        let rays = lane_rays(self.0.camera, corner, lanes, None);
+        let (reach, mut hits) = (Reach::after(t_start), [None; LANES]);
+        trace_rays(scene, &rays, lanes, reach, memory, &mut hits);
+        for i in each_lane(lanes) {
+            let (rgba, rays) = self.color(hits[i]);
+            put(i, rgba, rays);
+        }
+    }
+}
+
+impl Flat<'_, '_, '_> {
+    /// The packed pixel of a camera ray that found `hit`, and its ray.
+    #[inline]
+    fn color(&self, hit: Option<Hit>) -> (u32, RayStats) {
         let rgba = hit.map_or_else(|| self.0.miss(FLAT_SKY), |h| pack(h.voxel.color));
         (rgba, primary(hit.as_ref()))
     }

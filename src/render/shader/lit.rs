@@ -1,25 +1,29 @@
 //! The lit look: face light, and the effects a frame asks for as `const`
-//! switches (shadows, occlusion, fog, supersampling). A packet of its
-//! camera rays sends its hits' shadow and occlusion rays in packets too
-//! (`packets.rs`).
+//! switches (shadows, occlusion, fog, supersampling).
+//!
+//! One route makes every pixel, [`Lit`]'s [`Kernel::block`]: the lanes
+//! of an 8x4 block a mask picks (a lone pixel is lane 0 alone), sample by
+//! sample their camera, shadow and occlusion rays, each kind traced for
+//! all the lanes at once (in packets where the storage walks them,
+//! occlusion rays by octant in `packets.rs`), then each lane shaded.
 
-use glam::{U8Vec3, UVec3, Vec2};
+use glam::{U8Vec3, UVec3};
 
 use crate::geom::{Face, Ray};
-#[cfg(feature = "packets")]
-use crate::render::camera::{block_pixel, Camera};
+use crate::render::camera::block_pixel;
 use crate::render::options::Background;
 use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{face_index, fog_blend, lit, pack, pack_mean, sky};
-use crate::render::shader::{Kernel, Shader};
+use crate::render::shader::{each_lane, lane_rays, trace_rays, Kernel, Shader, LANES};
 use crate::render::stats::RayStats;
-#[cfg(feature = "packets")]
-use crate::scene::PACKET;
 use crate::scene::{Hit, Reach, Scene, WalkMemory};
 
 #[cfg(feature = "packets")]
 mod packets;
+
+#[cfg(feature = "packets")]
+use packets::{close, put, Bin};
 
 /// The lit look with the chosen effects: shadows, ambient occlusion, fog and
 /// several samples per pixel, each compiled in only when on.
@@ -52,24 +56,12 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         t_start: f32,
         memory: &mut WalkMemory<'s>,
     ) -> (u32, RayStats) {
-        if self.one_ray() {
-            let ray = self.0.camera.get_ray(x, y);
-            return self.ray_pixel(scene, &ray, (x, y), t_start, memory);
-        }
-        let mut mean = Mean::default();
-        for s in 0..self.samples() {
-            let offset = sample_offset((x, y), s);
-            let ray = self
-                .0
-                .camera
-                .get_ray_at(x as f32 + offset.x, y as f32 + offset.y);
-            let hit = scene
-                .trace_with(&ray, Reach::after(t_start), memory, None)
-                .hit;
-            let shaded = self.shade_sample(scene, &ray, hit, (x, y, s), memory, Found::default());
-            mean.add(shaded, self.0);
-        }
-        mean.pixel(self.samples(), self.0)
+        // Lane 0 of the block from the pixel, alone.
+        let mut pixel = (0, RayStats::default());
+        self.block(scene, (x, y), 1, t_start, memory, |_, rgba, rays| {
+            pixel = (rgba, rays)
+        });
+        pixel
     }
 
     #[cfg(feature = "packets")]
@@ -77,48 +69,30 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         true
     }
 
-    #[inline]
-    fn shade<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        ray: &Ray,
-        hit: Option<Hit>,
-        (x, y): (u32, u32),
-        memory: &mut WalkMemory<'s>,
-    ) -> (u32, RayStats) {
-        let shaded = self.shade_sample(scene, ray, hit, (x, y, 0), memory, Found::default());
-        self.packed(shaded)
-    }
-
-    /// Sample by sample: the block's camera rays as a packet, then their
-    /// hits' shadow and occlusion rays in packets
-    /// ([`Lit::secondary_in_packets`]), then each lane shaded.
-    #[cfg(feature = "packets")]
+    /// Sample by sample: the lanes' camera rays, then their hits' shadow
+    /// rays ([`Lit::shadowed`]) and occlusion rays ([`Lit::open`]), then
+    /// each lane shaded ([`Lit::shade`]); a pixel of one sample is packed
+    /// as it is shaded, one of several is their mean ([`Mean`]).
     #[inline]
     fn block<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
-        camera: &Camera,
         corner: (u32, u32),
+        lanes: u32,
         t_start: f32,
         memory: &mut WalkMemory<'s>,
         mut put: impl FnMut(usize, u32, RayStats),
     ) {
-        let at = |i| block_pixel(corner, i);
-        let one_ray = self.one_ray();
-        let mut means = [Mean::default(); PACKET];
+        let (one_ray, reach) = (self.one_ray(), Reach::after(t_start));
+        let mut means = [Mean::default(); LANES];
         for s in 0..self.samples() {
-            let rays = if one_ray {
-                camera.block_rays(corner.0, corner.1)
-            } else {
-                camera.block_sample_rays(corner, |i| sample_offset(at(i), s))
-            };
-            let mut hits = [None; PACKET];
-            scene.trace_lanes(&rays, u32::MAX, Reach::after(t_start), memory, &mut hits);
-            let found = self.secondary_in_packets(scene, (&rays, &hits), s, &at, memory);
-            for (i, (ray, &hit)) in rays.iter().zip(&hits).enumerate() {
-                let (x, y) = at(i);
-                let shaded = self.shade_sample(scene, ray, hit, (x, y, s), memory, found[i]);
+            let rays = lane_rays(self.0.camera, corner, lanes, (!one_ray).then_some(s));
+            let mut hits = [None; LANES];
+            trace_rays(scene, &rays, lanes, reach, memory, &mut hits);
+            let blocked = self.shadowed(scene, (&rays, &hits), lanes, memory);
+            let open = self.open(scene, (corner, s), (&rays, &hits), lanes, memory);
+            for i in each_lane(lanes) {
+                let shaded = self.shade(&rays[i], hits[i], blocked >> i & 1 != 0, open[i]);
                 if one_ray {
                     let (rgba, rays) = self.packed(shaded);
                     put(i, rgba, rays);
@@ -128,8 +102,8 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
             }
         }
         if !one_ray {
-            for (i, mean) in means.iter().enumerate() {
-                let (rgba, rays) = mean.pixel(self.samples(), self.0);
+            for i in each_lane(lanes) {
+                let (rgba, rays) = means[i].pixel(self.samples(), self.0);
                 put(i, rgba, rays);
             }
         }
@@ -145,7 +119,7 @@ struct Mean {
 }
 
 impl Mean {
-    /// Adds a sample: its color and rays ([`Lit::shade_sample`]).
+    /// Adds a sample: its color and rays ([`Lit::shade`]).
     #[inline]
     fn add(&mut self, (color, rays): (U8Vec3, RayStats), shader: &Shader) {
         if rays.primary_hits > 0 {
@@ -165,16 +139,6 @@ impl Mean {
         let hits = self.stats.primary_hits as u32;
         (pack_mean(samples, hits, transparent, mean_of), self.stats)
     }
-}
-
-/// What a hit's secondary rays found, where the caller traced them (in
-/// packets); `None` leaves them to [`Lit::shade_sample`].
-#[derive(Clone, Copy, Default)]
-pub(super) struct Found {
-    /// Whether the shadow ray hits something.
-    blocked: Option<bool>,
-    /// How many occlusion rays meet nothing within their reach.
-    open: Option<u32>,
 }
 
 impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const EXACT: bool>
@@ -203,14 +167,96 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         SHADOWS && (EXACT || self.0.options.shadows)
     }
 
-    /// The shadow ray of the camera ray `ray`'s hit `hit`, toward the sun:
-    /// `None` when the frame has no shadows, the face is turned from the
-    /// sun, or the hit has no face.
+    /// The lanes of `lanes` whose hit (`hits[i]`, of the camera ray
+    /// `rays[i]`) sends a shadow ray toward the sun that meets a voxel. A
+    /// hit sends one when the frame has shadows and its face is turned to
+    /// the sun and known ([`secondary`]). The rays walk from a copy of the
+    /// camera rays' memory (the next pixels' camera rays begin from it):
+    /// several together ([`trace_rays`]), a lone lane's alone.
     #[inline]
-    fn shadow_ray(&self, ray: &Ray, hit: &Hit) -> Option<Ray> {
+    fn shadowed<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        (rays, hits): (&[Ray; LANES], &[Option<Hit>; LANES]),
+        lanes: u32,
+        memory: &WalkMemory<'s>,
+    ) -> u32 {
+        if !self.shadows() {
+            return 0;
+        }
         let shader = self.0;
-        let sunlit = self.shadows() && shader.sunlit[face_index(hit.face)];
-        sunlit.then(|| secondary(ray, hit, shader.sun)).flatten()
+        let sunlit = |hit: &&Hit| shader.sunlit[face_index(hit.face)];
+        let shadow = |i: usize| secondary(&rays[i], hits[i].as_ref().filter(sunlit)?, shader.sun);
+        let memory = &mut memory.clone();
+        if lanes.is_power_of_two() {
+            // A lone lane: no packet to fill.
+            let i = lanes.trailing_zeros() as usize;
+            let blocker =
+                shadow(i).and_then(|ray| scene.trace_with(&ray, Reach::ALL, memory, None).hit);
+            return u32::from(blocker.is_some()) << i;
+        }
+        let (mut shadows, mut sent) = (*rays, 0u32);
+        for i in each_lane(lanes) {
+            if let Some(ray) = shadow(i) {
+                shadows[i] = ray;
+                sent |= 1 << i;
+            }
+        }
+        let mut blockers = [None; LANES];
+        trace_rays(scene, &shadows, sent, Reach::ALL, memory, &mut blockers);
+        let blocked = |i: usize| u32::from(blockers[i].is_some()) << i;
+        each_lane(sent).fold(0, |mask, i| mask | blocked(i))
+    }
+
+    /// How many occlusion rays of each lane's hit (`hits[i]`, of the camera
+    /// ray `rays[i]`, sample `sample` of lane `i` of the block from
+    /// `corner`) meet nothing within their reach, one that cannot leave
+    /// the face counted open (0 for a lane without a face, or a frame
+    /// without occlusion): in packets by octant for close hits
+    /// (`packets.rs`), else alone from a copy of the camera ray's memory.
+    #[inline]
+    fn open<'s, S: Scene + ?Sized>(
+        &self,
+        scene: &'s S,
+        (corner, sample): ((u32, u32), u32),
+        (rays, hits): (&[Ray; LANES], &[Option<Hit>; LANES]),
+        lanes: u32,
+        memory: &WalkMemory<'s>,
+    ) -> [u32; LANES] {
+        let mut open = [0u32; LANES];
+        let Some(ao) = self.0.options.occlusion.filter(|_| AO) else {
+            return open;
+        };
+        let reach = Reach::within(ao.distance);
+        #[cfg(feature = "packets")]
+        let mut bins =
+            (!lanes.is_power_of_two() && close(hits, ao.distance)).then(|| Bin::octants(rays[0]));
+        for i in each_lane(lanes) {
+            let Some((hit, entered)) = hits[i].as_ref().and_then(|h| Some((h, h.face?))) else {
+                continue;
+            };
+            let (x, y) = block_pixel(corner, i);
+            for j in 0..u32::from(ao.rays) {
+                let Some(ray) = occlusion_ray(&rays[i], hit, entered, (x, y, sample), j) else {
+                    open[i] += 1;
+                    continue;
+                };
+                #[cfg(feature = "packets")]
+                if let Some(bins) = &mut bins {
+                    if let Some(full) = put(bins, ray, i) {
+                        full.trace(scene, reach, memory, &mut open);
+                    }
+                    continue;
+                }
+                let hit = scene.trace_with(&ray, reach, &mut memory.clone(), None).hit;
+                open[i] += u32::from(hit.is_none());
+            }
+        }
+        #[cfg(feature = "packets")]
+        for bin in bins.iter_mut().flatten() {
+            bin.trace(scene, reach, memory, &mut open);
+        }
+        open
     }
 
     /// A one-ray pixel's packed color from its shaded sample.
@@ -222,19 +268,13 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         (pack(color), stats)
     }
 
-    /// Sample `sample` of pixel `(x, y)`, of the camera ray
-    /// `ray` whose hit is `hit`; its secondary rays traced here, but for
-    /// what the caller `found`.
+    /// A sample's color and rays: the camera ray `ray`'s hit `hit` in its
+    /// face's light, in shadow where its shadow ray was `blocked`
+    /// ([`Lit::shadowed`]), dimmed to the share of its occlusion rays that
+    /// are `open` ([`Lit::open`]), fogged by its distance; a miss is the
+    /// sky in the ray's direction.
     #[inline]
-    fn shade_sample<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        ray: &Ray,
-        hit: Option<Hit>,
-        (x, y, sample): (u32, u32, u32),
-        memory: &mut WalkMemory<'s>,
-        found: Found,
-    ) -> (U8Vec3, RayStats) {
+    fn shade(&self, ray: &Ray, hit: Option<Hit>, blocked: bool, open: u32) -> (U8Vec3, RayStats) {
         let shader = self.0;
         let mut stats = primary(hit.as_ref());
         let Some(hit) = hit else {
@@ -244,39 +284,13 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         let mut light = u32::from(shader.light[face]);
         if self.shadows() && shader.sunlit[face] {
             stats.shadow_rays += 1;
-            let blocked = found.blocked.unwrap_or_else(|| {
-                self.shadow_ray(ray, &hit).is_some_and(|shadow| {
-                    scene
-                        .trace_with(
-                            &shadow,
-                            Reach::ALL,
-                            // Begun from the hit's node, known to the walk
-                            // that found it (a copy: the next pixel's
-                            // primary ray begins from that hit too).
-                            &mut memory.clone(),
-                            None,
-                        )
-                        .hit
-                        .is_some()
-                })
-            });
             if blocked {
                 light = u32::from(shader.shadowed[face]);
             }
         }
         if AO {
-            if let (Some(entered), Some(ao)) = (hit.face, shader.options.occlusion) {
+            if let (Some(_), Some(ao)) = (hit.face, shader.options.occlusion) {
                 let rays = u32::from(ao.rays);
-                let open = found.open.unwrap_or_else(|| {
-                    let blocked = |j| {
-                        occlusion_ray(ray, &hit, entered, (x, y, sample), j).is_some_and(|r| {
-                            let memory = &mut memory.clone();
-                            let reach = Reach::within(ao.distance);
-                            scene.trace_with(&r, reach, memory, None).hit.is_some()
-                        })
-                    };
-                    (0..rays).map(|j| u32::from(!blocked(j))).sum()
-                });
                 stats.ao_rays += u64::from(rays);
                 light = light * open / rays;
             }
@@ -295,7 +309,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
 /// hit `hit` of its camera ray `ray`, entered through `entered`: `None`
 /// when no ray can leave the face (it then counts as open).
 #[inline]
-pub(super) fn occlusion_ray(
+fn occlusion_ray(
     ray: &Ray,
     hit: &Hit,
     entered: Face,
@@ -305,11 +319,4 @@ pub(super) fn occlusion_ray(
     let key = pixel_key(x, y, 1 + sample);
     let dir = around(entered, cosine_hemisphere(r2(j, key)));
     secondary(ray, hit, dir)
-}
-
-/// Where sample `s` of pixel `(x, y)` goes through the pixel, in a frame
-/// of several samples per pixel: a point of the pixel's own sequence.
-#[inline]
-fn sample_offset((x, y): (u32, u32), s: u32) -> Vec2 {
-    r2(s, pixel_key(x, y, 0))
 }

@@ -6,9 +6,10 @@
 //! code of a frame without shadows contains no shadow test at all (and so
 //! on for every effect). Every renderer (pixel, span, region, threaded) is a
 //! job, so they all compute pixels with the same code. This file holds
-//! what a frame's pixels need and the traits of jobs and kernels; the
-//! kernels and the dispatch are in [`kernels`], the lit look's kernel in
-//! [`lit`].
+//! what a frame's pixels need, the traits of jobs and kernels, and what
+//! the kernels that make pixels 8x4 at a time share (a block's lanes,
+//! its camera rays, their tracing); the kernels and the dispatch are in
+//! [`kernels`], the lit look's kernel in [`lit`].
 //!
 //! Scenes whose voxels use metal, glass or emitters (the [`EffectPlan`]
 //! says) get the path tracer instead (feature `path`), compiled for the
@@ -22,6 +23,7 @@
 
 #[cfg(not(feature = "path"))]
 use core::marker::PhantomData;
+use core::num::NonZeroU32;
 
 use glam::{U8Vec3, Vec3};
 
@@ -29,9 +31,7 @@ use crate::geom::Ray;
 #[cfg(feature = "path")]
 use crate::material::Materials;
 use crate::material::SceneMaterials;
-#[cfg(feature = "packets")]
-use crate::render::camera::block_pixel;
-use crate::render::camera::Camera;
+use crate::render::camera::{block_pixel, Camera};
 use crate::render::options::{Background, RenderOptions};
 #[cfg(feature = "path")]
 use crate::render::path::PathSetup;
@@ -39,6 +39,9 @@ use crate::render::path::PathSetup;
 use crate::render::plan::{EffectPlan, Look};
 #[cfg(feature = "path")]
 use crate::render::rounds::PixelSamples;
+#[cfg(feature = "packets")]
+use crate::render::sampling::sample_offset;
+use crate::render::sampling::sample_ray;
 use crate::render::shade::{face_weights, pack};
 use crate::render::stats::RayStats;
 #[cfg(feature = "packets")]
@@ -165,64 +168,88 @@ pub(crate) trait Kernel: Sync {
         false
     }
 
-    /// Pixel `(x, y)` of a kernel whose pixel is one camera ray (the
-    /// camera's `get_ray(x, y)`, however computed) and [`Kernel::shade`]
-    /// of its hit: the ray walked alone from `t_start`, its hit shaded.
-    #[inline]
-    fn ray_pixel<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        ray: &Ray,
-        (x, y): (u32, u32),
-        t_start: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> (u32, RayStats) {
-        let hit = scene
-            .trace_with(ray, Reach::after(t_start), memory, None)
-            .hit;
-        self.shade(scene, ray, hit, (x, y), memory)
-    }
-
-    /// Pixel `(x, y)` of a kernel whose pixel is one camera ray, given
-    /// that ray and its hit: the same pixel and rays as [`Kernel::pixel`].
-    /// The default (for kernels whose pixels are not one ray) traces the
-    /// pixel again.
-    fn shade<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        ray: &Ray,
-        hit: Option<Hit>,
-        (x, y): (u32, u32),
-        memory: &mut WalkMemory<'s>,
-    ) -> (u32, RayStats) {
-        let _ = (ray, hit);
-        self.pixel(scene, x, y, 0.0, memory)
-    }
-
-    /// The pixels of the 8x4 block from `corner` (lane `i` at
-    /// [`block_pixel`]`(corner, i)`), handed to `put(i, rgba, rays)`: the
-    /// pixels and rays [`Kernel::pixel`] gives, their camera rays traced
-    /// as a packet ([`Scene::trace_lanes`]), whose rays hit nothing before
-    /// `t_start`. The default is for a kernel whose pixel is one camera
-    /// ray through its center and [`Kernel::shade`] of its hit.
-    #[cfg(feature = "packets")]
+    /// The pixels of the lanes set in `lanes` of the 8x4 block from
+    /// `corner` (lane `i` at [`block_pixel`]`(corner, i)`), handed to
+    /// `put(i, rgba, rays)`, lowest lane first: the pixels and rays
+    /// [`Kernel::pixel`] gives, with the same `t_start` and `memory`
+    /// rules. A kernel that makes blocks traces their lanes together
+    /// ([`trace_rays`]); the default makes each lane's pixel alone.
+    /// Without the feature `packets`, `lanes` is lane 0 alone ([`LANES`]).
     #[inline]
     fn block<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
-        camera: &Camera,
         corner: (u32, u32),
+        lanes: u32,
         t_start: f32,
         memory: &mut WalkMemory<'s>,
         mut put: impl FnMut(usize, u32, RayStats),
     ) {
-        let rays = camera.block_rays(corner.0, corner.1);
-        let mut hits = [None; PACKET];
-        scene.trace_lanes(&rays, u32::MAX, Reach::after(t_start), memory, &mut hits);
-        for (i, (ray, &hit)) in rays.iter().zip(&hits).enumerate() {
-            let (rgba, rays) = self.shade(scene, ray, hit, block_pixel(corner, i), memory);
+        for i in each_lane(lanes) {
+            let (x, y) = block_pixel(corner, i);
+            let (rgba, rays) = self.pixel(scene, x, y, t_start, memory);
             put(i, rgba, rays);
         }
+    }
+}
+
+/// Lanes of the arrays a block's pixels are made in: one without the
+/// feature `packets`, where the only blocks are lone pixels.
+#[cfg(feature = "packets")]
+pub(crate) const LANES: usize = PACKET;
+#[cfg(not(feature = "packets"))]
+pub(crate) const LANES: usize = 1;
+
+/// The set bits of `lanes`, lowest first.
+#[inline]
+fn each_lane(mut lanes: u32) -> impl Iterator<Item = usize> {
+    core::iter::from_fn(move || {
+        let lane = NonZeroU32::new(lanes)?.trailing_zeros() as usize;
+        lanes &= lanes - 1;
+        Some(lane)
+    })
+}
+
+/// The camera rays of the lanes `lanes` of the 8x4 block from `corner`:
+/// lane `i`'s through its pixel ([`block_pixel`]) as [`sample_ray`]
+/// makes it for `sample`, bit for bit. The other lanes hold some camera
+/// ray, which no one traces. Several lanes are made four at a time.
+#[inline]
+fn lane_rays(camera: &Camera, corner: (u32, u32), lanes: u32, sample: Option<u32>) -> [Ray; LANES] {
+    #[cfg(feature = "packets")]
+    if !lanes.is_power_of_two() {
+        return match sample {
+            None => camera.block_rays(corner.0, corner.1),
+            Some(s) => {
+                camera.block_sample_rays(corner, |i| sample_offset(block_pixel(corner, i), s))
+            }
+        };
+    }
+    // A lone lane's ray, in every lane.
+    let lane = lanes.trailing_zeros() as usize;
+    [sample_ray(camera, block_pixel(corner, lane), sample); LANES]
+}
+
+/// The hits of the lanes `lanes` of `rays` over `reach`, into `hits`
+/// (other lanes untouched), exactly [`Scene::trace_with`]'s: several by
+/// [`Scene::trace_lanes`], a lone lane by its own walk (a packet of one
+/// shares nothing).
+#[inline]
+fn trace_rays<'s, S: Scene + ?Sized>(
+    scene: &'s S,
+    rays: &[Ray; LANES],
+    lanes: u32,
+    reach: Reach,
+    memory: &mut WalkMemory<'s>,
+    hits: &mut [Option<Hit>; LANES],
+) {
+    #[cfg(feature = "packets")]
+    if !lanes.is_power_of_two() {
+        scene.trace_lanes(rays, lanes, reach, memory, hits);
+        return;
+    }
+    for i in each_lane(lanes) {
+        hits[i] = scene.trace_with(&rays[i], reach, memory, None).hit;
     }
 }
 

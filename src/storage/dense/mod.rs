@@ -10,7 +10,6 @@ use crate::geom::{IAabb, Ray};
 use crate::scene::{Reach, Scene, Traced, Visit, WalkMemory};
 use crate::voxel::{Palette, VoxelSource};
 
-mod entry;
 mod walk;
 
 /// A dense voxel volume: one material byte per position of its bounds.

@@ -1,6 +1,6 @@
 //! The dense array's walk: the shared cell walk of `storage/walk/`,
-//! entered as [`Walk::start`] enters, then stepped by a loop specialised
-//! for one flat array.
+//! begun where every walk begins (`Lanes::begin`), then stepped by a loop
+//! specialised for one flat array.
 //!
 //! The loop keeps the walk's state in scalar registers, four per axis:
 //! the next crossing time, the one after it, the plane after that as an
@@ -17,19 +17,33 @@
 //! walk never comes back into it.
 //!
 //! Tracing walks only the occupied box: outside it every cell is empty, and
-//! `Walk::start` enters it at the crossing single steps enter it by (the
-//! octree starts at its occupied box the same way); `entry.rs` finds that
-//! entry by shortcuts where it can. The debug view's walk visits every
-//! cell of the volume with `Walk::step`.
+//! the walk enters it at the crossing single steps enter it by (the octree
+//! begins at its occupied box the same way). The debug view's walk visits
+//! every cell of the volume with `Walk::step`.
 
 use glam::{BVec3A, IVec3, Vec3A};
 
-use crate::geom::{Face, IAabb, Ray};
+use crate::geom::{IAabb, Ray};
 use crate::scene::{Hit, Traced};
-use crate::storage::dense::entry::{whole_numbers, Entry};
 use crate::storage::dense::DenseScene;
-use crate::storage::walk::{Key, Walk};
+use crate::storage::walk::{Begin, Key, Lanes, Walk};
 use crate::voxel::Palette;
+
+/// 1.5 * 2^23: added to a float below 2^22 in size, a sum whose last
+/// mantissa bit is worth 1.
+const ROUND: f32 = 12_582_912.0;
+
+/// `v` (whole numbers with `|v| <= 2^22`) as integers, read from the bits
+/// of `v + 1.5 * 2^23`: that sum lies in `[2^23, 2^24]`, where the float's
+/// last mantissa bit is worth 1, so its bits are those of 1.5 * 2^23 plus
+/// `v`. Exact, without the saturating casts' range checks.
+#[inline]
+fn whole_numbers(v: Vec3A) -> IVec3 {
+    let bits = (v + ROUND)
+        .to_array()
+        .map(|x| x.to_bits().wrapping_sub(ROUND.to_bits()) as i32);
+    IVec3::from_array(bits)
+}
 
 const MISS: Traced = Traced {
     hit: None,
@@ -40,12 +54,8 @@ const MISS: Traced = Traced {
 /// the axes of `down`.
 #[inline]
 fn hit(palette: &Palette, cell: IVec3, down: BVec3A, key: Key, material: u8) -> Option<Hit> {
-    let (face, t) = if key.t == f32::NEG_INFINITY {
-        (None, 0.0)
-    } else {
-        let a = usize::from(key.axis);
-        (Some(Face::entered(a, !down.test(a))), key.t)
-    };
+    // The key's axis is one the walk moves along: up where not down.
+    let (face, t) = key.entered(!down);
     Hit::from_palette(palette, cell, face, t, material)
 }
 
@@ -64,16 +74,13 @@ impl<B: AsRef<[u8]>> DenseScene<B> {
         if region.min.cmpge(region.max).any() {
             return MISS;
         }
-        let Some(Entry {
-            cell,
-            moving,
-            down,
-            next_t,
-            key,
-        }) = Entry::new(ray, region)
-        else {
+        let lanes = Lanes::of(ray);
+        let Begin::At { cell: cellf, key } = lanes.begin(ray, region, 0.0) else {
             return MISS;
         };
+        let (moving, down) = (lanes.moving, lanes.start.down);
+        // (A cell of the region: within +-2^22.)
+        let cell = whole_numbers(cellf);
         let cells = self.cells.as_ref();
         let mut idx = self.index(cell);
         let material = cells[idx];
@@ -81,17 +88,17 @@ impl<B: AsRef<[u8]>> DenseScene<B> {
             let hit = hit(&self.palette, cell, down, key, material);
             return Traced { hit, steps: 0 };
         }
-        // Per axis: the direction, the crossing after the next one, the
-        // plane after that one, the steps left inside the region. An axis
-        // the ray does not move along crosses nothing: its planes are
-        // 1 * inf away.
+        // Per axis: the direction, the next crossing, the one after it,
+        // the plane after that one, the steps left inside the region. An
+        // axis the ray does not move along crosses nothing: its planes
+        // are 1 * inf away.
         let (lo, hi) = (region.min.as_vec3a(), region.max.as_vec3a());
-        let cellf = cell.as_vec3a();
         let dir = Vec3A::select(down, Vec3A::NEG_ONE, Vec3A::ONE);
         let exit = Vec3A::select(down, cellf, cellf + 1.0);
-        let (ray_origin, _, ray_inv_dir) = ray.lanes();
-        let origin = Vec3A::select(moving, ray_origin, Vec3A::ZERO);
-        let inv_dir = Vec3A::select(moving, ray_inv_dir, Vec3A::INFINITY);
+        let next_t = (exit - lanes.origin) * lanes.inv_dir;
+        let next_t = Vec3A::select(moving, next_t, Vec3A::INFINITY);
+        let origin = Vec3A::select(moving, lanes.origin, Vec3A::ZERO);
+        let inv_dir = Vec3A::select(moving, lanes.inv_dir, Vec3A::INFINITY);
         let step = Vec3A::select(moving, dir, Vec3A::ZERO);
         let plane = Vec3A::select(moving, exit + dir, Vec3A::ONE);
         let after = (plane - origin) * inv_dir;

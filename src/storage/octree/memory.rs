@@ -1,21 +1,14 @@
-//! Where an octree walk begins: in the cell where the ray enters the
-//! region, or, for a walk begun at a later distance, in a cube the descent
-//! narrows by key comparisons; and when a [`WalkMemory`] knows the way, at
-//! the deepest node of the last walk's path whose cube still holds the new
-//! start (the restart a move makes, across rays). A lookup of one
+//! What a [`WalkMemory`] gives the octree: the deepest node of the last
+//! walk's path whose cube still holds a new walk's start, where that walk's
+//! descent begins (the restart a move makes, across rays). A lookup of one
 //! position's material (`OctreeScene::material`) descends the same way.
 
-use glam::{IVec3, Vec3A};
+use glam::IVec3;
 
-use crate::geom::{IAabb, Ray, MAX_COORD};
+use crate::geom::MAX_COORD;
 use crate::scene::{WalkMemory, MEMORY_PATH};
-use crate::storage::octree::grid::{pow2, whole};
 use crate::storage::octree::node::{brick_bit, child_rank, Node, NodeKind};
 use crate::storage::octree::OctreeScene;
-#[cfg(doc)]
-use crate::storage::walk::placed::Placed;
-use crate::storage::walk::Lanes;
-use crate::storage::walk::{EntryCell, Key, Walk};
 
 /// Entries of the path: the largest root has side `2 * MAX_COORD` = 2^23,
 /// and halving it down to side-4 bricks takes depths 0 to 21.
@@ -28,136 +21,7 @@ pub(super) const PATH: usize = (MAX_DEPTH + 1).next_power_of_two();
 // The path lives in a `WalkMemory`.
 const _: () = assert!(PATH == MEMORY_PATH);
 
-/// Where a walk begins: the ray is, at `key`, in the cube of side
-/// 2^known_log at `at`, which the node at `depth` (cube corner `node_at`)
-/// holds; the path entries of the memory are valid down to `depth`.
-pub(super) struct Begun {
-    pub(super) key: Key,
-    pub(super) at: Vec3A,
-    pub(super) known_log: u32,
-    pub(super) depth: usize,
-    pub(super) node: Node,
-    pub(super) node_at: Vec3A,
-    /// The key the walk began at when it is no crossing (a later
-    /// distance): a hit in the cell the ray is in there reports the
-    /// crossing that entered the cell instead. `None` for a walk begun at
-    /// the crossing it entered by.
-    pub(super) placed_key: Option<Key>,
-}
-
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
-    /// Where the walk of `ray` through `region` (whose exit is
-    /// `leaves_region`) begins when it may begin at `t_start`: `None` when
-    /// it misses the region or has left it by then.
-    ///
-    /// A ray inside the region by `(t_start, x)` is known only to the cube
-    /// of the node the memory knows for the cell of the point there, if the
-    /// ray is in that cube at that key (the point's rounding can cross a
-    /// face), else to the root cube; the descent narrows it by the same key
-    /// comparisons as far as the tree needs, and no cell is settled first.
-    /// Whether it is inside the region and inside that cube is first asked
-    /// of the point itself ([`Placed`]): a box holding it with the rounding
-    /// margin holds the walk's cell too, and no key is computed for it.
-    /// A ray entering the region later begins in the cell it enters by
-    /// (its start cell when it starts inside), as single steps would: from
-    /// outside, the cell [`Lanes::entry_cell`] checks, or where the walk's
-    /// own placement puts it when that check fails.
-    /// Inlined: its answer stays in registers.
-    #[inline(always)]
-    pub(super) fn begin(
-        &self,
-        ray: &Ray,
-        lanes: &Lanes,
-        region: IAabb,
-        leaves_region: Key,
-        t_start: f32,
-        memory: &mut WalkMemory,
-    ) -> Option<Begun> {
-        let (region_lo, region_hi) = (region.min.as_vec3a(), region.max.as_vec3a());
-        let min = self.bounds.min;
-        let min_f = min.as_vec3a();
-        let root_log = self.root_size.trailing_zeros();
-        let later = Key {
-            t: t_start,
-            axis: 0,
-        };
-        // A point inside the region by the rounding margin says without
-        // any crossing that the ray has entered and not left it by then
-        // (most primary rays, placed at their tile's clear distance); else
-        // the keys decide.
-        let placed = (t_start > 0.0).then(|| lanes.placed_at(t_start));
-        let surely_inside = placed.is_some_and(|p| p.surely_in(region_lo, region_hi));
-        let entry = if surely_inside {
-            None
-        } else {
-            let (enters, starts_inside) = lanes.entry_of(region_lo, region_hi)?;
-            if enters.t == f32::INFINITY {
-                return None;
-            }
-            Some((enters, starts_inside))
-        };
-        let placed_later = match entry {
-            None => placed,
-            Some((enters, _)) if t_start > 0.0 && enters.lt(later) => {
-                if leaves_region.lt(later) {
-                    return None;
-                }
-                placed
-            }
-            Some(_) => None,
-        };
-        if let Some(placed) = placed_later {
-            let point = placed.point.floor();
-            let guess = whole((point.clamp(region_lo, region_hi - 1.0) - min_f).into());
-            let (depth, node) = self.recall(guess, memory);
-            let log = root_log - depth as u32;
-            let corner = (min + (guess >> log << log)).as_vec3a();
-            let hi = corner + pow2(log);
-            let holds = placed.surely_in(corner, hi) || lanes.holds(corner, hi, later);
-            let (depth, node, log, corner) = if holds {
-                (depth, node, log, corner)
-            } else {
-                (0, self.root, root_log, min_f)
-            };
-            return Some(Begun {
-                key: later,
-                at: corner,
-                known_log: log,
-                depth,
-                node,
-                node_at: corner,
-                placed_key: Some(later),
-            });
-        }
-        // Begun at the region's entry: `entry` is known here.
-        let (enters, starts_inside) = entry?;
-        let (cell, key) = if starts_inside {
-            (lanes.start.cell, enters)
-        } else {
-            match lanes.entry_cell(region_lo, region_hi, enters) {
-                EntryCell::In(cell) => (cell.as_ivec3(), enters),
-                // Beside the region on an axis: the ray passes it by.
-                EntryCell::Beside => return None,
-                EntryCell::Unsure => {
-                    let mut walk = Walk::unplaced(ray, &region);
-                    walk.place_from(t_start).ok()?;
-                    (walk.cell(), walk.key())
-                }
-            }
-        };
-        let (depth, node) = self.recall(cell - min, memory);
-        let log = root_log - depth as u32;
-        Some(Begun {
-            key,
-            at: cell.as_vec3a(),
-            known_log: 0,
-            depth,
-            node,
-            node_at: (min + ((cell - min) >> log << log)).as_vec3a(),
-            placed_key: None,
-        })
-    }
-
     /// The depth and node a walk whose position is `corner` (relative to
     /// the tree's corner) begins its descent at: the deepest node of
     /// `memory`'s path that holds `corner`, when this scene wrote the

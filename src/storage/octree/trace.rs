@@ -21,10 +21,10 @@ use glam::{IVec3, Vec3A};
 use crate::geom::{IAabb, Ray};
 use crate::scene::{Hit, Reach, SolidStart, Traced, WalkMemory};
 use crate::storage::octree::grid::{changed_bits, cube_at, pow2, spread, whole};
-use crate::storage::octree::memory::{Begun, PATH};
+use crate::storage::octree::memory::PATH;
 use crate::storage::octree::node::{child_rank, BrickMaterials, Node, NodeKind, BRICK, GROUP};
 use crate::storage::octree::OctreeScene;
-use crate::storage::walk::{Key, Lanes, Start};
+use crate::storage::walk::{Begin, Key, Lanes, Start};
 
 /// The cube of side 2^log at the corner `cube` (exact floats) as the box
 /// a visitor is shown.
@@ -92,31 +92,52 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let lanes = Lanes::of(ray);
         let (region_lo, region_hi) = (region.min.as_vec3a(), region.max.as_vec3a());
         let leaves_region = lanes.exit_of(region_lo, region_hi);
-        let Some(begun) = self.begin(ray, &lanes, region, leaves_region, t_start, memory) else {
-            return missed;
-        };
         let stays_before = leaves_region.t.min(t_max);
         let min = self.bounds.min;
         let min_f = min.as_vec3a();
         let nodes = self.nodes.as_ref();
         let root_log = self.root_size.trailing_zeros();
         let mut steps = 0;
+        // Where the walk begins: in the cell it enters by, or at a clear
+        // distance past its entry at that key alone, near the point's cell
+        // (clamped into the region: only the memory is asked about it).
+        let (mut key, cell, placed) = match lanes.begin(ray, &region, t_start) {
+            Begin::Misses => return missed,
+            Begin::At { cell, key } => (key, cell, None),
+            Begin::Later(placed) => {
+                let later = Key {
+                    t: t_start,
+                    axis: 0,
+                };
+                let cell = placed.point.floor().clamp(region_lo, region_hi - 1.0);
+                (later, cell, Some(placed))
+            }
+        };
         // The position: the ray is, at `key`, in the cube of side
         // 2^known_log at `at`. Corners are kept in world coordinates as
         // floats, which are exact: every corner and plane of the tree lies
         // within 2^24 of the origin (`MAX_COORD` and the root's side).
         // path[d] (1 <= d <= depth): index of the node at depth d holding
         // the position, whose cube has side 2^(root_log - d); `node` is the
-        // one at `depth` itself, its cube's corner `node_at`.
-        let Begun {
-            mut key,
-            mut at,
-            mut known_log,
-            mut depth,
-            mut node,
-            mut node_at,
-            placed_key,
-        } = begun;
+        // one at `depth` itself, its cube's corner `node_at`. The descent
+        // starts at the deepest node of the memory's path that holds the
+        // cell (`recall`). A walk placed at a clear distance knows only
+        // that node's cube, if the ray is in it at that key (the point's
+        // rounding can cross a face), else the root's; the descent narrows
+        // it by key comparisons, and no cell is settled first.
+        let (mut depth, mut node) = self.recall(whole((cell - min_f).into()), memory);
+        let mut node_at = cube_at(cell, min_f, root_log - depth as u32);
+        let (mut at, mut known_log) = (cell, 0);
+        if let Some(placed) = placed {
+            let hi = node_at + pow2(root_log - depth as u32);
+            if !(placed.surely_in(node_at, hi) || lanes.holds(node_at, hi, key)) {
+                (depth, node, node_at) = (0, self.root, min_f);
+            }
+            (at, known_log) = (node_at, root_log - depth as u32);
+        }
+        // A hit in the cell the ray is in at a clear distance (no crossing)
+        // reports the crossing that entered that cell.
+        let placed_key = placed.map(|_| key);
         let path = &mut memory.path;
         // Half the side of the node at `depth`, on every lane: halved as the
         // descent goes down, set again where a move restarts it.
@@ -313,7 +334,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         } else {
             key
         };
-        let (face, t) = lanes.entry_at(key);
+        let (face, t) = key.entered(lanes.start.up);
         let hit = Hit::from_palette(&self.palette, pos, face, t, material);
         Traced { hit, steps }
     }

@@ -15,12 +15,12 @@
 //! The walk's state after any number of steps is exactly "the cell reached
 //! after processing every crossing in key order up to the current one". The
 //! dense backend steps one cell at a time. The octree moves from box to box:
-//! `Walk::exit_of` is the key at which the ray leaves an empty box (the
+//! `Lanes::exit_of` is the key at which the ray leaves an empty box (the
 //! earliest of its far-plane crossings, which single steps would also reach
-//! there), and the octree's `Lanes::upper_sides` says which half of a box
-//! the ray is in at a key, from the same crossings, the same start rule and
-//! the same order. Both backends
-//! therefore find the same first solid cell, face and `t`, bit for bit.
+//! there), and `Lanes::upper_sides` says which half of a box the ray is in
+//! at a key, from the same crossings, the same start rule and the same
+//! order. Both backends therefore find the same first solid cell, face and
+//! `t`, bit for bit.
 //!
 //! # The start
 //! The ray starts in the cell it is in just after `t = 0`: an origin exactly on
@@ -29,24 +29,31 @@
 //! voxel therefore does not hit that voxel again. Crossings at `t = +inf` (the
 //! ray never gets there in `f32`) never happen.
 //!
+//! # Where a walk begins
+//! Three routes, each in one place: the start rule and the scalar walk's
+//! entry into its volume, the definition ([`Start`], [`Walk::start`],
+//! `start.rs`); the route both storages take, on lanes, from the start or
+//! from a clear distance ([`Lanes::begin`], `begin.rs`, with [`placed`]);
+//! and the octree's descent from the node a `WalkMemory` recalls
+//! (`octree/memory.rs`).
+//!
 //! # The bound
 //! Every step, or move out of a box, crosses a new plane of the volume, and
 //! the walk stops once it leaves the volume, so a walk takes at most
 //! `size.x + size.y + size.z` moves ([`max_steps`]).
 
-use glam::{IVec3, Vec3, Vec3A};
+use glam::{BVec3A, IVec3, Vec3, Vec3A};
 
 use crate::geom::{Face, IAabb};
 
-mod entry;
-mod guess;
+mod begin;
 mod lanes;
 pub(crate) mod placed;
 mod start;
 #[cfg(test)]
 pub(crate) mod test_rays;
 
-pub(crate) use entry::{EntryCell, AXES};
+pub(crate) use begin::{Begin, AXES};
 pub(crate) use lanes::Lanes;
 pub(crate) use start::{Start, EXACT};
 
@@ -69,12 +76,21 @@ impl Key {
     pub(crate) fn lt(self, other: Key) -> bool {
         self.t < other.t || (self.t == other.t && self.axis < other.axis)
     }
-}
 
-/// A walk's placement found the ray outside its volume: it misses the
-/// volume, or has left it by the key it was placed at.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Missed;
+    /// The face this crossing enters a cell through, for a walk moving up
+    /// the axes of `up`, and its distance: `None` and 0 before every
+    /// crossing (a start cell the ray is strictly inside of). The one
+    /// place a hit's face and `t` come from.
+    #[inline]
+    pub(crate) fn entered(self, up: BVec3A) -> (Option<Face>, f32) {
+        if self.t == f32::NEG_INFINITY {
+            (None, 0.0)
+        } else {
+            let up = up.bitmask() >> self.axis & 1 != 0;
+            (Some(Face::entered(usize::from(self.axis), up)), self.t)
+        }
+    }
+}
 
 /// Most moves (single cell steps or jumps over empty boxes) any ray makes in `bounds`.
 #[must_use]
@@ -176,12 +192,6 @@ impl Walk {
         self.cell
     }
 
-    /// Per axis: +1, -1, or 0 for an axis the ray does not move along.
-    #[inline]
-    pub(crate) fn step_dir(&self) -> IVec3 {
-        self.step
-    }
-
     /// Crossing time of each axis' exit plane from the current cell (+inf
     /// on an axis the ray does not move along): the state a specialised
     /// loop continues single steps from. Computed from the cell on each
@@ -211,21 +221,10 @@ impl Walk {
     }
 
     /// The entry face of the current cell (`None` for a start cell the ray
-    /// is strictly inside of) and the distance to it.
+    /// is strictly inside of) and the distance to it ([`Key::entered`]).
     pub(crate) fn entry(&self) -> (Option<Face>, f32) {
-        self.entry_at(self.key)
-    }
-
-    /// The face and distance of the crossing `key` (`None` and 0 for
-    /// [`Key::BEFORE`]).
-    #[inline]
-    pub(crate) fn entry_at(&self, key: Key) -> (Option<Face>, f32) {
-        if key.t == f32::NEG_INFINITY {
-            (None, 0.0)
-        } else {
-            let axis = key.axis as usize;
-            (Some(Face::entered(axis, self.step[axis] > 0)), key.t)
-        }
+        let up = self.step.cmpgt(IVec3::ZERO);
+        self.key.entered(BVec3A::new(up.x, up.y, up.z))
     }
 
     /// The first crossing out of the box `[lo, hi)` for a ray that is

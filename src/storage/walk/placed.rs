@@ -67,7 +67,7 @@ mod tests {
     use crate::storage::walk::test_rays::Rng;
     use crate::storage::walk::{Key, Start, Walk};
 
-    /// The placed point as `Lanes::placed_at` computes it.
+    /// The placed point as `Lanes::begin` computes it.
     fn placed_at(ray: &Ray, t: f32) -> Placed {
         let (origin, dir, _) = ray.lanes();
         Placed::at(origin, dir, Start::of(ray).moving(), t)
@@ -81,12 +81,11 @@ mod tests {
             return false;
         }
         let key = Key { t, axis: 0 };
-        let mut walk = Walk::unplaced(ray, &volume);
-        let placed = walk.place_from(t).is_ok() && walk.key().lt(key);
-        let cell = walk.cell();
+        let walk = Walk::at(ray, &volume, key).filter(|w| w.key().lt(key));
+        let cell = walk.map(|w| w.cell());
         assert!(
-            placed && cell.cmpge(lo).all() && cell.cmplt(hi).all(),
-            "{ray:?} at {t}: walk in {cell} (placed: {placed}), box {lo}..{hi}"
+            cell.is_some_and(|c| c.cmpge(lo).all() && c.cmplt(hi).all()),
+            "{ray:?} at {t}: walk in {cell:?}, box {lo}..{hi}"
         );
         true
     }
@@ -110,16 +109,15 @@ mod tests {
             }
             let placed = placed_at(&ray, t);
             let key = Key { t, axis: 0 };
-            let mut walk = Walk::unplaced(&ray, &bounds);
+            let walk = Walk::at(&ray, &bounds, key).filter(|w| w.key().lt(key));
             let (lo_f, hi_f) = (bounds.min.as_vec3a(), bounds.max.as_vec3a());
-            let inside = walk.place_from(t).is_ok() && walk.key().lt(key);
             if placed.surely_in(lo_f, hi_f) {
-                assert!(inside, "{ray:?} {t} {bounds:?}: not in the box");
+                assert!(walk.is_some(), "{ray:?} {t} {bounds:?}: not in the box");
                 sure += 1;
             }
-            if !inside {
+            let Some(walk) = walk else {
                 continue;
-            }
+            };
             let cell = walk.cell();
             for _ in 0..8 {
                 let (lo, hi) = rng.box_near(cell);

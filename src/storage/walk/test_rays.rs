@@ -91,17 +91,6 @@ impl Rng {
         }
     }
 
-    /// A ray from a grid-ish origin in `-60..60` (`None` for a zero
-    /// direction).
-    pub(crate) fn ray(&mut self) -> Option<Ray> {
-        let origin = Vec3::new(
-            self.coordinate(60.0),
-            self.coordinate(60.0),
-            self.coordinate(60.0),
-        );
-        Ray::new(origin, self.direction()).ok()
-    }
-
     /// A ray aimed at a point of `bounds` (kept axis-aligned on one axis or
     /// diagonal as [`Rng::direction`] makes them), from a grid-ish origin
     /// outside or, one time in four, inside it.

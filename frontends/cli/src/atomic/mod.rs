@@ -131,6 +131,16 @@ enum Prepared {
     },
 }
 
+/// `e`, saying where the link `target` leads when the file replaced is
+/// another (`real`): the error is about that file's folder.
+fn through_link(e: io::Error, real: &Path, target: &Path) -> io::Error {
+    if real == target {
+        return e;
+    }
+    let leads = format!("{e}: the link leads to {}", show_path(real));
+    io::Error::new(e.kind(), leads)
+}
+
 /// Everything [`AtomicFile::create`] checks, without creating anything.
 fn prepare(target: &Path) -> io::Result<Prepared> {
     if target.file_name().is_none() {
@@ -143,16 +153,7 @@ fn prepare(target: &Path) -> io::Result<Prepared> {
         Destination::InPlace => return Ok(Prepared::InPlace),
         Destination::Replace(real) => real,
     };
-    let leads = |e: io::Error| {
-        if real == target {
-            e
-        } else {
-            io::Error::new(
-                e.kind(),
-                format!("{e}: the link leads to {}", show_path(&real)),
-            )
-        }
-    };
+    let leads = |e| through_link(e, &real, target);
     let name = real.file_name().unwrap_or_default().to_os_string();
     let dir = Dir::open(parent_of(&real)).map_err(leads)?;
     dir.check_writable().map_err(leads)?;
@@ -219,13 +220,7 @@ impl AtomicFile {
                     });
                 }
                 Err(e) if e.kind() == io::ErrorKind::AlreadyExists => {}
-                Err(e) if real == target => return Err(e),
-                Err(e) => {
-                    return Err(io::Error::new(
-                        e.kind(),
-                        format!("{e}: the link leads to {}", show_path(&real)),
-                    ))
-                }
+                Err(e) => return Err(through_link(e, &real, target)),
             }
         }
         Err(io::Error::new(

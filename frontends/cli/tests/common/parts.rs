@@ -175,16 +175,24 @@ pub fn idat_indices(chunks: &[Chunk]) -> Vec<usize> {
 
 /// `part` (a part's file) with its image replaced by `pixels`, a
 /// `width x height` image re-encoded by the core's own encoder, and its
-/// text chunks kept as they are: another image under the same metadata.
+/// other chunks kept as they are, where they are (the text chunks before
+/// the image data and the digest after it): another image under the same
+/// metadata.
 pub fn with_pixels(part: &[u8], width: u32, height: u32, pixels: &[u32]) -> Vec<u8> {
-    let texts: Vec<(String, String)> = chunks(part)
+    let old = chunks(part);
+    let idats = idat_indices(&old);
+    let (first, last) = (idats[0], *idats.last().unwrap());
+    let texts: Vec<(String, String)> = old[..first]
         .iter()
         .filter_map(|c| c.as_text().map(|(k, t)| (k.to_string(), t.to_string())))
         .collect();
     let texts: Vec<(&str, &str)> = texts.iter().map(|(k, t)| (&k[..], &t[..])).collect();
     let mut png = Vec::new();
     voxtrace::encode_png_with_text(&mut png, width, height, pixels, &texts).unwrap();
-    png
+    let mut new = chunks(&png);
+    new.pop(); // IEND, which ends `old` too
+    new.extend_from_slice(&old[last + 1..]);
+    png_of(&new)
 }
 
 /// `part` with the text of its `keyword` chunk replaced by `text` (the

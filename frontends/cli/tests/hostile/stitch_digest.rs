@@ -2,7 +2,8 @@
 //! part's image data flipped with its chunk's CRC made right (each stitch
 //! under `prlimit` and a time limit), every bit of a whole part flipped
 //! (read in process), another part's pixels under a part's chunks, a part
-//! relabelled as another tile, a tampered digest and a part without one.
+//! relabelled as another tile, a tampered digest, a part without one and
+//! a digest out of its place (the last chunk before `IEND`).
 //! The parts are rendered by the binary, as a farm task writes them; every
 //! stitch of a forged part is refused with exit 2 and one `error:` line
 //! naming the part, and writes no frame.
@@ -13,7 +14,7 @@ use std::time::Instant;
 
 use super::common::limits::{check_contract, run_limited, tools_present};
 use super::common::parts::{
-    chunks, idat_indices, png_of, rendered_parts, text_of, with_pixels, with_text,
+    chunks, idat_indices, png_of, rendered_parts, text_of, with_pixels, with_text, Chunk,
 };
 use super::common::run::{assert_refused, fresh_dir, stderr};
 use voxtrace_cli::part::{read_part, PartDigest, Placement, DIGEST_KEY, PART_KEY};
@@ -302,4 +303,52 @@ fn a_part_without_a_digest_is_refused_and_to_be_rendered_again() {
             "render it again",
         ],
     );
+}
+
+/// The digest chunk anywhere but where voxtrace writes it, the last chunk
+/// before `IEND` (each chunk whole, its CRC right, nothing else changed):
+/// moved before the image data (where a voxtrace before this layout wrote
+/// it), right after `IHDR`, followed by another chunk, and given twice.
+#[test]
+fn a_digest_anywhere_but_right_before_iend_is_refused() {
+    let dir = scratch("digest-place");
+    let parts = tiles(&dir, &[]);
+    let good = chunks(&std::fs::read(&parts[2]).unwrap());
+    let last = good.len() - 2;
+    assert_eq!(
+        good[last].as_text().map(|(k, _)| k),
+        Some(DIGEST_KEY),
+        "the digest is not the chunk before IEND"
+    );
+    let first_idat = idat_indices(&good)[0];
+    let moved = |to: usize| {
+        let mut moved = good.clone();
+        let digest = moved.remove(last);
+        moved.insert(to, digest);
+        png_of(&moved)
+    };
+    let mut followed = good.clone();
+    followed.insert(last + 1, Chunk::new(b"tIME", vec![7, 233, 1, 2, 3, 4, 5]));
+    let mut twice = good.clone();
+    twice.insert(first_idat, good[last].clone());
+    for (name, forged, needle) in [
+        (
+            "before-image.png",
+            moved(first_idat),
+            "not the last chunk before IEND",
+        ),
+        ("after-ihdr.png", moved(1), "not the last chunk before IEND"),
+        (
+            "followed.png",
+            png_of(&followed),
+            "not the last chunk before IEND",
+        ),
+        (
+            "twice.png",
+            png_of(&twice),
+            "two voxtrace-digest text chunks",
+        ),
+    ] {
+        refused_in_place_of(&dir, 2, name, &forged, &[needle]);
+    }
 }
