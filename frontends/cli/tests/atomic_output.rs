@@ -11,6 +11,8 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use common::run::entries;
+#[cfg(unix)]
+use common::run::with_default_signals;
 
 /// A fresh, empty directory of its own for each test.
 fn fresh_dir(name: &str) -> PathBuf {
@@ -76,7 +78,6 @@ fn a_successful_render_replaces_the_file_whole() {
 /// binary keeps a signal ignored at its start ignored.
 #[cfg(unix)]
 fn slow_render(out: &Path) -> std::process::Child {
-    use std::os::unix::process::CommandExt;
     let signals: Vec<libc::c_int> = terminating_signals().iter().map(|(n, _)| *n).collect();
     let mut command = Command::new(env!("CARGO_BIN_EXE_voxtrace"));
     command
@@ -84,21 +85,7 @@ fn slow_render(out: &Path) -> std::process::Child {
         .args(["--spp", "256", "--shadows", "--seed", "1", "--out"])
         .arg(out)
         .stderr(Stdio::piped());
-    // SAFETY: between fork and exec the closure only calls sigaction, which
-    // is async-signal-safe, on a zeroed action with the default handler.
-    #[allow(unsafe_code)]
-    unsafe {
-        command.pre_exec(move || {
-            for &signal in &signals {
-                let mut action: libc::sigaction = std::mem::zeroed();
-                action.sa_sigaction = libc::SIG_DFL;
-                if libc::sigaction(signal, &action, std::ptr::null_mut()) != 0 {
-                    return Err(std::io::Error::last_os_error());
-                }
-            }
-            Ok(())
-        });
-    }
+    with_default_signals(&mut command, signals);
     command.spawn().unwrap()
 }
 

@@ -125,7 +125,7 @@ fn every_thread_count_writes_the_same_file() {
 #[test]
 fn stats_print_every_contract_key() {
     let out = scratch("stats.png");
-    let result = voxtrace(&[
+    let result = voxtrace([
         "--size",
         "20",
         "--width",
@@ -171,7 +171,7 @@ fn stats_print_every_contract_key() {
 #[test]
 fn missing_seed_is_printed_and_reproduces_the_render() {
     let out = scratch("random.png");
-    let result = voxtrace(&[
+    let result = voxtrace([
         "--size",
         "20",
         "--width",
@@ -188,7 +188,7 @@ fn missing_seed_is_printed_and_reproduces_the_render() {
         .find_map(|l| l.strip_prefix("seed: "))
         .expect("seed printed");
     let again = scratch("again.png");
-    let result = voxtrace(&[
+    let result = voxtrace([
         "--size",
         "20",
         "--width",
@@ -277,7 +277,7 @@ fn errors_say_what_applies_and_print_nothing_before() {
     use std::os::unix::ffi::OsStrExt;
     // A random seed is printed after a success only: an error is alone.
     let unwritable = "/nonexistent-dir/terrain.vox";
-    let stderr = refusal(&voxtrace(&["--export-vox", unwritable, "--size", "8"]));
+    let stderr = refusal(&voxtrace(["--export-vox", unwritable, "--size", "8"]));
     assert!(stderr.contains(unwritable), "{stderr}");
     // An index variable holding bytes that are not text is not "unset".
     let out = scratch("tile-%t.png");
@@ -297,7 +297,7 @@ fn errors_say_what_applies_and_print_nothing_before() {
     let vox = write_vox("refused.vox");
     let out = scratch("refused.png");
     for (frame, remedy) in [("16", "--max-memory"), ("4000", "a smaller frame")] {
-        let result = voxtrace(&[
+        let result = voxtrace([
             "--vox",
             vox.to_str().unwrap(),
             "--max-memory",
@@ -519,7 +519,7 @@ fn bad_vox_files_exit_2_with_one_line() {
     for (name, bytes) in cases {
         let path = scratch(name);
         std::fs::write(&path, bytes).unwrap();
-        let result = voxtrace(&[
+        let result = voxtrace([
             "--vox",
             path.to_str().unwrap(),
             "--width",
@@ -599,7 +599,7 @@ fn material_scenes_print_their_plan_and_count_every_new_ray() {
         &[("_type", "_glass"), ("_trans", "1"), ("_ior", "0.5")],
     );
     let out = scratch("materials.png");
-    let result = voxtrace(&[
+    let result = voxtrace([
         "--vox",
         vox.to_str().unwrap(),
         "--width",
@@ -630,7 +630,7 @@ fn material_scenes_print_their_plan_and_count_every_new_ray() {
     );
     assert!(!stderr.contains("warning"), "{stderr}");
     // --bounces 0 leaves direct light only: no bounce rays at all.
-    let result = voxtrace(&[
+    let result = voxtrace([
         "--vox",
         vox.to_str().unwrap(),
         "--width",
@@ -659,7 +659,7 @@ fn bad_matl_values_warn_in_one_line_naming_file_material_and_key() {
         &[("_type", "_glass"), ("_trans", "1"), ("_ior", "-0.5")],
     );
     let out = scratch("bad-matl.png");
-    let result = voxtrace(&[
+    let result = voxtrace([
         "--vox",
         vox.to_str().unwrap(),
         "--width",

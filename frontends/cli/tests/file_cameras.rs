@@ -61,7 +61,7 @@ fn render(file: &[u8], name: &str, n: u32, size: u32) -> Vec<u8> {
     std::fs::write(&vox, file).unwrap();
     let out = scratch(&format!("{name}.png"));
     let size = size.to_string();
-    let result = voxtrace(&[
+    let result = voxtrace([
         "--vox",
         vox.to_str().unwrap(),
         "--camera",
@@ -256,7 +256,7 @@ fn stats_name_the_file_camera_as_flags_that_reproduce_it() {
     let vox = scratch("stats.vox");
     std::fs::write(&vox, scene(&[on_a(0, "pers", "0 0 0", "30")])).unwrap();
     let out = scratch("stats.png");
-    let result = voxtrace(&[
+    let result = voxtrace([
         "--vox",
         vox.to_str().unwrap(),
         "--camera",

@@ -16,7 +16,7 @@ fn scratch(name: &str) -> std::path::PathBuf {
 #[test]
 fn a_vox_file_where_a_flag_belongs_says_to_use_vox() {
     for name in ["study.vox", "My Model.VOX"] {
-        let result = voxtrace(&[name]);
+        let result = voxtrace([name]);
         let shown = if name.contains(' ') {
             format!("--vox '{name}'")
         } else {
@@ -25,19 +25,19 @@ fn a_vox_file_where_a_flag_belongs_says_to_use_vox() {
         assert_refused(&result, &[name, &shown]);
     }
     // Any other stray word is only named.
-    let result = voxtrace(&["render"]);
+    let result = voxtrace(["render"]);
     assert_refused(&result, &["render"]);
     assert!(!stderr(&result).contains("--vox"), "{}", stderr(&result));
 }
 
 #[test]
 fn help_is_a_word_too() {
-    let help = voxtrace(&["help"]);
+    let help = voxtrace(["help"]);
     assert!(help.status.success(), "{}", stderr(&help));
     let text = String::from_utf8_lossy(&help.stdout);
     assert!(text.contains("Usage: voxtrace"), "{text}");
-    assert_eq!(text, String::from_utf8_lossy(&voxtrace(&["--help"]).stdout));
-    let stitch = voxtrace(&["help", "stitch"]);
+    assert_eq!(text, String::from_utf8_lossy(&voxtrace(["--help"]).stdout));
+    let stitch = voxtrace(["help", "stitch"]);
     assert!(stitch.status.success(), "{}", stderr(&stitch));
     let text = String::from_utf8_lossy(&stitch.stdout);
     assert!(text.contains("Usage: voxtrace stitch"), "{text}");
@@ -47,7 +47,7 @@ fn help_is_a_word_too() {
 fn a_tile_number_in_out_without_tiles_is_refused() {
     let out = scratch("part-%t.png");
     let out = out.to_str().unwrap();
-    let result = voxtrace(&[
+    let result = voxtrace([
         "--size", "8", "--seed", "1", "--width", "8", "--height", "8", "--out", out,
     ]);
     assert_refused(&result, &[out, "%t", "--tiles"]);
@@ -77,7 +77,7 @@ fn a_file_camera_inside_a_voxel_points_to_other_cameras_not_position() {
     let vox = scratch("inside.vox");
     std::fs::write(&vox, camera_inside_a_voxel()).unwrap();
     let out = scratch("inside.png");
-    let result = voxtrace(&[
+    let result = voxtrace([
         "--vox",
         vox.to_str().unwrap(),
         "--camera",
@@ -139,7 +139,7 @@ fn a_render_on_a_terminal_says_where_it_went() {
     assert!(line.contains("16x8"), "{line}");
     assert!(line.contains(&format!("{bytes} bytes")), "{line}");
     // Not a terminal: nothing but what a script got before (here nothing).
-    let quiet = voxtrace(&[SMALL, &["--out", out.to_str().unwrap()]].concat());
+    let quiet = voxtrace([SMALL, &["--out", out.to_str().unwrap()]].concat());
     assert!(quiet.status.success());
     assert_eq!(stderr(&quiet), "", "a script's stderr stays empty");
 }
@@ -183,7 +183,7 @@ fn a_path_traced_frame_at_few_fixed_samples_hints_once_at_what_helps() {
         let said = run(extra);
         assert!(!said.contains(hint), "{extra:?}: {said}");
     }
-    let shaded = voxtrace(&[
+    let shaded = voxtrace([
         "--size", "12", "--seed", "1", "--width", "24", "--height", "16", "--spp", "2", "--out",
         out,
     ]);

@@ -17,13 +17,13 @@ fn render(name: &str, flags: &[&str]) -> (Vec<u8>, String) {
 
 #[test]
 fn spp_and_noise_threshold_conflict_in_one_line() {
-    let out = voxtrace(&["--spp", "4", "--noise-threshold", "0.1", "--out", "x.png"]);
+    let out = voxtrace(["--spp", "4", "--noise-threshold", "0.1", "--out", "x.png"]);
     assert_refused(&out, &["--spp", "--noise-threshold"]);
     for bad in ["0", "-0.1", "1.5", "nan", "inf", "much"] {
-        let out = voxtrace(&["--noise-threshold", bad, "--out", "x.png"]);
+        let out = voxtrace(["--noise-threshold", bad, "--out", "x.png"]);
         assert_refused(&out, &["--noise-threshold", "is not a noise threshold"]);
     }
-    let out = voxtrace(&["--quality", "best", "--out", "x.png"]);
+    let out = voxtrace(["--quality", "best", "--out", "x.png"]);
     assert_refused(&out, &["--quality", "preview", "final"]);
 }
 

@@ -97,10 +97,10 @@ fn the_reported_samples_reproduce_the_bytes() {
 #[test]
 fn bad_limits_and_tiles_are_refused_in_one_line() {
     for bad in ["0", "-1", "-0.5", "-0", "nan", "inf", "soon", ""] {
-        let out = voxtrace(&["--time-limit", bad, "--out", "x.png"]);
+        let out = voxtrace(["--time-limit", bad, "--out", "x.png"]);
         assert_refused(&out, &["--time-limit", "is not a time limit"]);
     }
-    let out = voxtrace(&[
+    let out = voxtrace([
         "--time-limit",
         "10",
         "--seed",
@@ -113,10 +113,10 @@ fn bad_limits_and_tiles_are_refused_in_one_line() {
         "x.png",
     ]);
     assert_refused(&out, &["--time-limit", "--tiles", "--max-spp"]);
-    let out = voxtrace(&["--max-spp", "8", "--spp", "4", "--out", "x.png"]);
+    let out = voxtrace(["--max-spp", "8", "--spp", "4", "--out", "x.png"]);
     assert_refused(&out, &["--max-spp", "--spp"]);
     for bad in ["0", "4097", "-3", "many"] {
-        let out = voxtrace(&["--max-spp", bad, "--out", "x.png"]);
+        let out = voxtrace(["--max-spp", bad, "--out", "x.png"]);
         assert_refused(&out, &["--max-spp"]);
     }
 }

@@ -84,7 +84,7 @@ fn vertical_views_and_presets_agree_on_backends_and_threads() {
 #[test]
 fn an_explicit_up_along_the_view_is_refused_with_one_line() {
     let out = scratch("refused.png");
-    let result = voxtrace(&[
+    let result = voxtrace([
         "--size",
         "20",
         "--seed",
@@ -278,13 +278,13 @@ fn a_transparent_background_keeps_its_alpha_where_the_format_has_one() {
 #[test]
 fn out_dash_writes_the_image_to_stdout() {
     let (file, _) = run(&[], "to_file.png");
-    let result = voxtrace(&[
+    let result = voxtrace([
         "--size", "40", "--seed", "2", "--width", "96", "--height", "64", "--out", "-",
     ]);
     assert!(result.status.success(), "{}", stderr(&result));
     assert!(result.stdout == file, "stdout differs from the file");
     assert!(!Path::new("-").exists(), "a file named - was written");
-    let bmp = voxtrace(&[
+    let bmp = voxtrace([
         "--size", "20", "--seed", "2", "--width", "16", "--height", "8", "--out", "-", "--format",
         "bmp",
     ]);
@@ -317,7 +317,7 @@ fn out_dash_writes_the_image_to_stdout() {
 
 #[test]
 fn help_names_every_format_and_the_new_flags() {
-    let help = String::from_utf8(voxtrace(&["--help"]).stdout).unwrap();
+    let help = String::from_utf8(voxtrace(["--help"]).stdout).unwrap();
     for word in [
         "png",
         "bmp",
@@ -373,7 +373,7 @@ fn bad_values_get_one_line_with_the_hint() {
         }
     }
     // Conflicts name both flags.
-    let result = voxtrace(&["--view", "top", "--position", "1,2,3"]);
+    let result = voxtrace(["--view", "top", "--position", "1,2,3"]);
     let text = stderr(&result);
     assert!(
         result.status.code() == Some(2) && text.lines().count() == 1,
@@ -385,7 +385,7 @@ fn bad_values_get_one_line_with_the_hint() {
     );
     // An absurd position names its real cause, not the field of view.
     let out = scratch("far.png");
-    let result = voxtrace(&[
+    let result = voxtrace([
         "--position",
         "1e30,1e30,1e30",
         "--seed",
@@ -471,7 +471,7 @@ fn stats_print_the_scene_box_and_a_camera_that_reproduces_the_frame() {
 fn the_shipped_sample_is_the_export_and_renders_as_its_source() {
     // The README's command makes exactly the shipped file.
     let out = scratch("terrain.vox");
-    let result = voxtrace(&[
+    let result = voxtrace([
         "--export-vox",
         out.to_str().unwrap(),
         "--size",
@@ -533,7 +533,7 @@ fn the_shipped_sample_is_the_export_and_renders_as_its_source() {
             }
         }
     }
-    let too_big = voxtrace(&[
+    let too_big = voxtrace([
         "--export-vox",
         out.to_str().unwrap(),
         "--size",

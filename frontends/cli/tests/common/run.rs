@@ -1,10 +1,12 @@
 //! Running the binary, and the folder a suite writes its files in.
 
+use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-/// `voxtrace ARGS`, run to completion.
-pub fn voxtrace(args: &[&str]) -> Output {
+/// `voxtrace ARGS`, run to completion; the arguments are given as they
+/// are, bytes that are not UTF-8 included.
+pub fn voxtrace<A: AsRef<OsStr>>(args: impl IntoIterator<Item = A>) -> Output {
     Command::new(env!("CARGO_BIN_EXE_voxtrace"))
         .args(args)
         .output()
@@ -98,4 +100,28 @@ pub fn render_terrain_model(suite: &str, name: &str, flags: &[&str]) -> (Vec<u8>
     let run = voxtrace(&args);
     assert!(run.status.success(), "{flags:?}: {}", stderr(&run));
     (std::fs::read(&out).unwrap(), stderr(&run))
+}
+
+/// Starts `command`'s program with each of `signals` at its default
+/// disposition, whatever this test inherited: a shell without job control
+/// starts its background jobs with SIGINT and SIGQUIT ignored, and the
+/// binary keeps a signal ignored at its start ignored.
+#[cfg(unix)]
+pub fn with_default_signals(command: &mut Command, signals: Vec<libc::c_int>) -> &mut Command {
+    use std::os::unix::process::CommandExt;
+    // SAFETY: between fork and exec the closure only calls sigaction, which
+    // is async-signal-safe, on a zeroed action with the default handler.
+    #[allow(unsafe_code)]
+    unsafe {
+        command.pre_exec(move || {
+            for &signal in &signals {
+                let mut action: libc::sigaction = std::mem::zeroed();
+                action.sa_sigaction = libc::SIG_DFL;
+                if libc::sigaction(signal, &action, std::ptr::null_mut()) != 0 {
+                    return Err(std::io::Error::last_os_error());
+                }
+            }
+            Ok(())
+        })
+    }
 }

@@ -102,7 +102,7 @@ fn camera_refusals_name_the_setting_at_fault() {
         ),
     ];
     for (flags, present, absent) in cases {
-        let run = voxtrace(&terrain(out, flags));
+        let run = voxtrace(terrain(out, flags));
         assert_refused(&run, present);
         let text = stderr(&run);
         for word in absent {
@@ -149,7 +149,7 @@ fn a_matl_value_not_utf8_warns_and_the_rest_of_the_material_applies() {
         let vox = dir.join(format!("{name}.vox"));
         std::fs::write(&vox, metal_scene(metal)).unwrap();
         let png = dir.join(format!("{name}.png"));
-        let run = voxtrace(&[
+        let run = voxtrace([
             "--vox",
             vox.to_str().unwrap(),
             "--width",

@@ -14,16 +14,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use super::common::limits::tools_present;
-use super::common::run::{fresh_dir, is_one_error_line, stderr};
+use super::common::run::{fresh_dir, is_one_error_line, stderr, voxtrace};
 use super::common::vox_bytes::small_scene;
-
-/// `voxtrace ARGS`, arguments of any bytes.
-fn voxtrace_os<A: AsRef<OsStr>>(args: impl IntoIterator<Item = A>) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_voxtrace"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
 
 /// `name` (any bytes but `/` and NUL) in `dir`.
 fn named(dir: &Path, name: &[u8]) -> PathBuf {
@@ -72,7 +64,7 @@ fn an_out_that_is_not_utf8_writes_exactly_that_name() {
     let neighbour = dir.join("a\u{FFFD}.png");
     std::fs::write(&neighbour, b"X").unwrap();
     let out = named(&dir, b"a\xff.png");
-    let run = voxtrace_os(tiny_with([OsStr::new("--out"), out.as_os_str()]));
+    let run = voxtrace(tiny_with([OsStr::new("--out"), out.as_os_str()]));
     assert_ok(&run, "--out a\\xff.png");
     assert!(is_png(&out), "no PNG at a\\xff.png");
     assert_eq!(std::fs::read(&neighbour).unwrap(), b"X");
@@ -89,7 +81,7 @@ fn a_vox_that_is_not_utf8_loads() {
     let vox = named(&dir, b"m\xfe.vox");
     std::fs::write(&vox, small_scene()).unwrap();
     let out = dir.join("out.png");
-    let run = voxtrace_os([
+    let run = voxtrace([
         OsStr::new("--vox"),
         vox.as_os_str(),
         OsStr::new("--width"),
@@ -109,7 +101,7 @@ fn a_vox_that_is_not_utf8_loads() {
 fn an_export_vox_that_is_not_utf8_writes_exactly_that_name() {
     let dir = fresh_dir("hostile", "names-export");
     let vox = named(&dir, b"t\xff.vox");
-    let run = voxtrace_os([
+    let run = voxtrace([
         OsStr::new("--export-vox"),
         vox.as_os_str(),
         OsStr::new("--size"),
@@ -120,7 +112,7 @@ fn an_export_vox_that_is_not_utf8_writes_exactly_that_name() {
     assert_ok(&run, "--export-vox t\\xff.vox");
     assert_eq!(names_in(&dir), [b"t\xff.vox".to_vec()]);
     let out = dir.join("back.png");
-    let run = voxtrace_os([
+    let run = voxtrace([
         OsStr::new("--vox"),
         vox.as_os_str(),
         OsStr::new("--width"),
@@ -139,7 +131,7 @@ fn an_export_vox_that_is_not_utf8_writes_exactly_that_name() {
 fn a_frame_pattern_that_is_not_utf8_keeps_its_bytes() {
     let dir = fresh_dir("hostile", "names-frames");
     let pattern = named(&dir, b"s\xff_####.png");
-    let run = voxtrace_os(tiny_with([
+    let run = voxtrace(tiny_with([
         OsStr::new("--frames"),
         OsStr::new("2"),
         OsStr::new("--out"),
@@ -160,7 +152,7 @@ fn tiles_and_stitch_take_names_that_are_not_utf8() {
     let dir = fresh_dir("hostile", "names-stitch");
     let pattern = named(&dir, b"p\xff_%t.png");
     for tile in ["0", "1"] {
-        let run = voxtrace_os(tiny_with([
+        let run = voxtrace(tiny_with([
             OsStr::new("--tiles"),
             OsStr::new("2x1"),
             OsStr::new("--tile-index"),
@@ -176,9 +168,9 @@ fn tiles_and_stitch_take_names_that_are_not_utf8() {
     let mut args = vec![OsString::from("stitch")];
     args.extend(parts.iter().map(|p| p.as_os_str().to_os_string()));
     args.extend([OsString::from("--out"), stitched.clone().into_os_string()]);
-    assert_ok(&voxtrace_os(&args), "stitch");
+    assert_ok(&voxtrace(&args), "stitch");
     let whole = dir.join("whole.png");
-    let run = voxtrace_os(tiny_with([OsStr::new("--out"), whole.as_os_str()]));
+    let run = voxtrace(tiny_with([OsStr::new("--out"), whole.as_os_str()]));
     assert_ok(&run, "the whole frame");
     assert_eq!(
         std::fs::read(&stitched).unwrap(),
@@ -234,7 +226,7 @@ fn messages_show_bytes_that_are_not_utf8_as_hex() {
         ),
     ];
     for (args, needle) in cases {
-        let run = voxtrace_os(&args);
+        let run = voxtrace(&args);
         let text = stderr(&run);
         assert_eq!(run.status.code(), Some(2), "{args:?}: {text}");
         assert!(is_one_error_line(&text), "{args:?}: {text}");
@@ -283,7 +275,7 @@ fn every_control_character_is_escaped_on_the_one_error_line() {
                 } else {
                     args.extend([flag.to_string(), value.to_string()]);
                 }
-                let run = voxtrace_os(&args);
+                let run = voxtrace(&args);
                 runs += 1;
                 let text = stderr(&run);
                 let line = text.strip_suffix('\n').unwrap_or(&text);
@@ -312,12 +304,12 @@ fn every_control_character_is_escaped_on_the_one_error_line() {
 /// and clap's hint survives a value with a control character.
 #[test]
 fn a_forged_error_line_stays_inside_the_one_line() {
-    let run = voxtrace_os(["--fov=1\rerror: forged", "--out", "/dev/null"]);
+    let run = voxtrace(["--fov=1\rerror: forged", "--out", "/dev/null"]);
     let text = stderr(&run);
     assert_eq!(run.status.code(), Some(2), "{text}");
     assert!(is_one_error_line(&text), "{text:?}");
     assert!(text.contains("'1\\rerror: forged'"), "{text:?}");
-    let run = voxtrace_os(["--backend", "vox\u{1b}el", "--out", "/dev/null"]);
+    let run = voxtrace(["--backend", "vox\u{1b}el", "--out", "/dev/null"]);
     let text = stderr(&run);
     assert!(is_one_error_line(&text), "{text:?}");
     assert!(

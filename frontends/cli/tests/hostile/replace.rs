@@ -13,21 +13,15 @@ use std::ffi::OsStr;
 use std::os::unix::fs::MetadataExt;
 use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use super::common::run::{entries, fresh_dir, is_one_error_line, stderr};
+use super::common::run::{
+    entries, fresh_dir, is_one_error_line, stderr, voxtrace, with_default_signals,
+};
 
 const SUITE: &str = "hostile-replace";
 const OLD: &[u8] = b"old";
-
-/// `voxtrace` with `args` and `--out`-like paths as they are (bytes).
-fn run(args: &[&OsStr]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_voxtrace"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
 
 fn os(text: &str) -> &OsStr {
     OsStr::new(text)
@@ -122,7 +116,7 @@ fn frame_reference(flags: &[&str], k: u32) -> Vec<u8> {
         os("--out"),
         pattern.as_os_str(),
     ]);
-    let out = run(&args);
+    let out = voxtrace(&args);
     assert!(out.status.success(), "{}", stderr(&out));
     std::fs::read(dir.join(format!("f_{k:04}.png"))).unwrap()
 }
@@ -133,7 +127,7 @@ fn export_vox_on_a_full_disk_keeps_the_old_file() {
         return;
     };
     let file = disk.dir.join("t.vox");
-    let small = run(&[
+    let small = voxtrace([
         os("--seed"),
         os("1"),
         os("--size"),
@@ -145,7 +139,7 @@ fn export_vox_on_a_full_disk_keeps_the_old_file() {
     let old = std::fs::read(&file).unwrap();
     disk.leave_free(8 * 1024);
     // Size 40 is tens of kilobytes: more than the disk has left.
-    let big = run(&[
+    let big = voxtrace([
         os("--seed"),
         os("1"),
         os("--size"),
@@ -193,6 +187,11 @@ fn export_vox_past_the_file_size_limit_keeps_the_old_file() {
     assert_eq!(entries(&dir), ["t.vox"]);
 }
 
+/// A still of a second's work at most: the small terrain, 32x24.
+const STILL: [&str; 8] = [
+    "--seed", "1", "--size", "20", "--width", "32", "--height", "24",
+];
+
 /// A turntable whose second frame takes more pages than its first plus
 /// one (about 5 and 14 KB).
 const TURNTABLE: [&str; 10] = [
@@ -207,7 +206,7 @@ fn a_directory_as_a_later_frame_fails_before_any_frame_is_replaced() {
     let pattern = dir.join("s_####.png");
     let mut args: Vec<&OsStr> = TURNTABLE.iter().map(|f| os(f)).collect();
     args.extend([os("--out"), pattern.as_os_str()]);
-    let out = run(&args);
+    let out = voxtrace(&args);
     let text = stderr(&out);
     assert_eq!(out.status.code(), Some(2), "{text}");
     assert!(is_one_error_line(&text), "{text}");
@@ -239,7 +238,7 @@ fn a_turntable_on_a_full_disk_names_the_frames_it_wrote() {
     let pattern = disk.dir.join("s_####.png");
     let mut args: Vec<&OsStr> = TURNTABLE.iter().map(|f| os(f)).collect();
     args.extend([os("--out"), pattern.as_os_str()]);
-    let out = run(&args);
+    let out = voxtrace(&args);
     let text = stderr(&out);
     assert_eq!(out.status.code(), Some(2), "{text}");
     assert!(is_one_error_line(&text), "{text}");
@@ -265,27 +264,14 @@ fn kill(child: &std::process::Child, signal: libc::c_int) {
     assert_eq!(sent, 0);
 }
 
-/// The binary with every terminating signal at its default (whatever this
+/// The binary with SIGINT and SIGTERM at their defaults (whatever this
 /// test inherited), standard error piped.
 fn started(args: &[&OsStr]) -> std::process::Child {
     let mut command = Command::new(env!("CARGO_BIN_EXE_voxtrace"));
     command.args(args).stderr(Stdio::piped());
-    // SAFETY: between fork and exec only sigaction to the default,
-    // async-signal-safe.
-    #[allow(unsafe_code)]
-    unsafe {
-        command.pre_exec(|| {
-            for signal in [libc::SIGINT, libc::SIGTERM] {
-                let mut action: libc::sigaction = std::mem::zeroed();
-                action.sa_sigaction = libc::SIG_DFL;
-                if libc::sigaction(signal, &action, std::ptr::null_mut()) != 0 {
-                    return Err(std::io::Error::last_os_error());
-                }
-            }
-            Ok(())
-        });
-    }
-    command.spawn().unwrap()
+    with_default_signals(&mut command, vec![libc::SIGINT, libc::SIGTERM])
+        .spawn()
+        .unwrap()
 }
 
 #[test]
@@ -412,18 +398,12 @@ fn an_append_only_folder_is_refused_before_the_build_and_left_clean() {
     if !chattr("+a", &dir) {
         return;
     }
-    let out = run(&[
-        os("--seed"),
-        os("1"),
-        os("--size"),
-        os("20"),
-        os("--width"),
-        os("32"),
-        os("--height"),
-        os("24"),
-        os("--out"),
-        out_path.as_os_str(),
-    ]);
+    let out = voxtrace(
+        STILL
+            .map(os)
+            .into_iter()
+            .chain([os("--out"), out_path.as_os_str()]),
+    );
     let left = entries(&dir);
     chattr("-a", &dir);
     let text = stderr(&out);
@@ -443,7 +423,7 @@ fn an_immutable_out_is_refused_before_the_build() {
         return;
     }
     // A frame of many seconds: refused at once, or this test is slow.
-    let out = run(&[
+    let out = voxtrace([
         os("--seed"),
         os("1"),
         os("--size"),
@@ -477,9 +457,7 @@ fn a_replaced_file_keeps_its_mode_and_owner_and_a_new_one_takes_the_umask() {
     let given = std::os::unix::fs::chown(&private, Some(nobody), Some(nobody)).is_ok();
     let render = |out: &Path, umask: libc::mode_t| {
         let mut command = Command::new(env!("CARGO_BIN_EXE_voxtrace"));
-        command.args([
-            "--seed", "1", "--size", "20", "--width", "32", "--height", "24",
-        ]);
+        command.args(STILL);
         command.arg("--out").arg(out);
         // SAFETY: between fork and exec only umask, async-signal-safe.
         #[allow(unsafe_code)]
@@ -527,9 +505,7 @@ fn an_out_as_long_as_the_kernel_takes_is_written() {
         .unwrap();
     assert!(made.success());
     let done = Command::new(env!("CARGO_BIN_EXE_voxtrace"))
-        .args([
-            "--seed", "1", "--size", "20", "--width", "32", "--height", "24",
-        ])
+        .args(STILL)
         .args(["--out", &out])
         .current_dir(&base)
         .output()
