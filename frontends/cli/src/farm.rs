@@ -2,7 +2,9 @@
 //! one tile of the frame and writes it as a part that knows where it
 //! belongs, and `voxtrace stitch` puts the parts back together.
 
+use std::ffi::OsString;
 use std::io::{BufWriter, Write};
+use std::os::unix::ffi::OsStringExt;
 use std::path::{Path, PathBuf};
 
 use voxtrace::{Camera, RenderOptions};
@@ -166,21 +168,8 @@ fn tile_path(out: &Path, tile: u32, count: u32) -> PathBuf {
         rest = &rest[at + 2..];
     }
     bytes.extend_from_slice(rest);
-    path_from_bytes(bytes).unwrap_or_else(|| out.to_path_buf())
-}
-
-/// The path of `bytes` (as `OsStr::as_encoded_bytes` gives them): any
-/// bytes on Unix; elsewhere a path that is not UTF-8 has no `%t` replaced.
-fn path_from_bytes(bytes: Vec<u8>) -> Option<PathBuf> {
-    #[cfg(unix)]
-    {
-        use std::os::unix::ffi::OsStringExt;
-        Some(PathBuf::from(std::ffi::OsString::from_vec(bytes)))
-    }
-    #[cfg(not(unix))]
-    {
-        String::from_utf8(bytes).ok().map(PathBuf::from)
-    }
+    // Unix paths are any bytes (the CLI builds on Unix only).
+    PathBuf::from(OsString::from_vec(bytes))
 }
 
 /// Writes a rendered tile as a part PNG into `file`.

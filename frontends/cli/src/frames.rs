@@ -4,6 +4,7 @@
 
 use std::ffi::{OsStr, OsString};
 use std::ops::RangeInclusive;
+use std::os::unix::ffi::OsStringExt;
 use std::path::{Path, PathBuf};
 
 use voxtrace::glam::Vec3;
@@ -105,23 +106,8 @@ pub fn frame_path(pattern: &Path, frame: u32) -> Result<PathBuf, String> {
     let mut named = name[..start].to_vec();
     named.extend_from_slice(format!("{frame:0width$}").as_bytes());
     named.extend_from_slice(&name[end..]);
-    // Only where a name that is not UTF-8 cannot be rebuilt from bytes.
-    let named = name_from_bytes(named).ok_or_else(needs_hashes)?;
-    Ok(pattern.with_file_name(named))
-}
-
-/// The file name of `bytes` (as `OsStr::as_encoded_bytes` gives them): any
-/// bytes on Unix, else only UTF-8.
-fn name_from_bytes(bytes: Vec<u8>) -> Option<OsString> {
-    #[cfg(unix)]
-    {
-        use std::os::unix::ffi::OsStringExt;
-        Some(OsString::from_vec(bytes))
-    }
-    #[cfg(not(unix))]
-    {
-        String::from_utf8(bytes).ok().map(OsString::from)
-    }
+    // A Unix file name is any bytes (the CLI builds on Unix only).
+    Ok(pattern.with_file_name(OsString::from_vec(named)))
 }
 
 /// Frame `frame` (1-based) of a turntable of `frames` frames: `base`'s

@@ -89,16 +89,9 @@ pub fn check_stdout() -> Result<(), String> {
 /// every write error shows, where `std::io::stdout` takes `EBADF` (a
 /// descriptor open only for reading) for success and the image would be
 /// lost.
-#[cfg(unix)]
 pub fn stdout() -> std::io::Result<std::fs::File> {
     use std::os::fd::AsFd;
     Ok(std::io::stdout().as_fd().try_clone_to_owned()?.into())
-}
-
-/// Standard output, elsewhere.
-#[cfg(not(unix))]
-pub fn stdout() -> std::io::Result<std::io::Stdout> {
-    Ok(std::io::stdout())
 }
 
 /// Whether standard output was closed when the process started. Rust's

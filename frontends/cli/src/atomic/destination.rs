@@ -83,22 +83,11 @@ fn directory_ending(path: &Path) -> Option<&'static str> {
 }
 
 /// Whether `a` and `b` are the status of the same file: the same device
-/// and inode. Where std gives no file identity (not unix) it is `false`:
-/// files are never taken for the same, so a check that refuses a clash
-/// lets it pass and a symlinked output is written in place (not
-/// replaced).
+/// and inode.
 #[must_use]
 pub fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::MetadataExt;
-        (a.dev(), a.ino()) == (b.dev(), b.ino())
-    }
-    #[cfg(not(unix))]
-    {
-        let _ = (a, b);
-        false
-    }
+    use std::os::unix::fs::MetadataExt;
+    (a.dev(), a.ino()) == (b.dev(), b.ino())
 }
 
 /// `target` does not exist: it is either a new file (a missing directory
