@@ -115,7 +115,7 @@ fn the_binary_denoises_whole_frames_and_crops_and_refuses_tiles() {
     let (crop, _) = run("crop.png", &["--denoise", "--region", "8,4,24,20"]);
     assert_eq!((crop.0, crop.1), (24, 20));
     let out = dir.join("tile.png");
-    let tiled = voxtrace(&[
+    let tiled = voxtrace([
         "--seed",
         "1",
         "--size",
