@@ -11,8 +11,8 @@ use std::time::Duration;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use voxtrace::glam::Vec3;
 use voxtrace::{
-    pack, render, sky, Camera, CameraSettings, Fog, IAabb, Occlusion, OctreeScene, RenderOptions,
-    Scene, VoxelGenerator,
+    pack, render, sky, Camera, CameraSettings, Fog, IAabb, Occlusion, OctreeScene, Rect,
+    RenderOptions, Scene, Target, VoxelGenerator,
 };
 
 /// The least a pixel can be: one primary ray, its voxel's color or the sky.
@@ -84,7 +84,17 @@ fn effects(c: &mut Criterion) {
     ];
     for (name, options) in looks {
         group.bench_function(BenchmarkId::new("render", name), |b| {
-            b.iter(|| render(&scene, &camera, &options, &mut out).unwrap())
+            b.iter(|| {
+                render(
+                    &scene,
+                    &camera,
+                    &options,
+                    Rect::full(&camera),
+                    Target::Buffer(&mut out),
+                    None,
+                )
+                .unwrap()
+            })
         });
     }
     group.finish();

@@ -12,8 +12,8 @@ use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use voxtrace::{
-    render_parallel, Camera, CameraSettings, DenseScene, Framebuffer, IAabb, OctreeScene, Rect,
-    RenderOptions, Scene, VoxelGenerator,
+    Camera, CameraSettings, DenseScene, Framebuffer, IAabb, OctreeScene, Rect, RenderOptions,
+    Scene, Target, VoxelGenerator,
 };
 
 fn quick() -> bool {
@@ -51,7 +51,15 @@ fn camera(size: i32, (width, height): (u32, u32), above: bool) -> Camera {
 
 fn render_frame(scene: &(dyn Scene + Sync), camera: &Camera, frame: &Framebuffer) {
     let options = RenderOptions::default();
-    render_parallel(scene, camera, &options, Rect::full(camera), frame).expect("render");
+    voxtrace::render(
+        scene,
+        camera,
+        &options,
+        Rect::full(camera),
+        Target::Framebuffer(frame),
+        None,
+    )
+    .expect("render");
 }
 
 fn render(c: &mut Criterion) {

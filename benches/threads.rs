@@ -12,8 +12,8 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use voxtrace::glam::Vec3;
 use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{
-    render_parallel, Camera, CameraSettings, DenseScene, Framebuffer, IAabb, OctreeScene, Rect,
-    RenderOptions, Scene, VoxelGenerator,
+    render, Camera, CameraSettings, DenseScene, Framebuffer, IAabb, OctreeScene, Rect,
+    RenderOptions, Scene, Target, VoxelGenerator,
 };
 
 fn quick() -> bool {
@@ -57,12 +57,13 @@ fn threads_at(c: &mut Criterion, width: u32, height: u32, size: i32) {
             group.bench_function(BenchmarkId::new(name, format!("{count}-threads")), |b| {
                 b.iter(|| {
                     pool.install(|| {
-                        render_parallel(
+                        render(
                             scene,
                             &camera,
                             &RenderOptions::default(),
                             Rect::full(&camera),
-                            &frame,
+                            Target::Framebuffer(&frame),
+                            None,
                         )
                     })
                     .expect("render")

@@ -1,7 +1,7 @@
 //! Your own voxels: implement [`voxtrace::VoxelSource`] for a type of your
 //! own (here a sphere resting on a checkerboard floor), build an
 //! [`voxtrace::OctreeScene`] from it, render the frame on all cores with
-//! [`voxtrace::render_parallel`] into a [`voxtrace::Framebuffer`], and write
+//! [`voxtrace::render`] into a [`voxtrace::Framebuffer`], and write
 //! it as a PNG.
 //!
 //! ```sh
@@ -19,8 +19,8 @@ use std::path::PathBuf;
 
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
-    render_parallel, write_png, Camera, CameraSettings, Framebuffer, IAabb, OctreeScene, Palette,
-    Rect, Region, RenderOptions, VoxelSource,
+    render, write_png, Camera, CameraSettings, Framebuffer, IAabb, OctreeScene, Palette, Rect,
+    Region, RenderOptions, Target, VoxelSource,
 };
 
 /// Materials of the scene's palette (0 is always empty).
@@ -144,7 +144,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ..RenderOptions::default()
     };
     let frame = Framebuffer::new(camera.width(), camera.height())?;
-    let stats = render_parallel(&scene, &camera, &options, Rect::full(&camera), &frame)?;
+    let stats = render(
+        &scene,
+        &camera,
+        &options,
+        Rect::full(&camera),
+        Target::Framebuffer(&frame),
+        None,
+    )?;
     println!(
         "{} primary rays, {} shadow rays",
         stats.primary_rays, stats.shadow_rays

@@ -29,8 +29,8 @@ use std::path::PathBuf;
 
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
-    pack, render, unpack, Camera, CameraSettings, Golden, GoldenError, IAabb, OctreeScene,
-    RenderOptions, VoxelGenerator, UPDATE_GOLDEN,
+    pack, render, unpack, Camera, CameraSettings, Golden, GoldenError, IAabb, OctreeScene, Rect,
+    RenderOptions, Target, VoxelGenerator, UPDATE_GOLDEN,
 };
 
 const WIDTH: u32 = 32;
@@ -58,7 +58,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ..CameraSettings::default()
     })?;
     let mut pixels = vec![0u32; (WIDTH * HEIGHT) as usize];
-    render(&scene, &camera, &RenderOptions::default(), &mut pixels)?;
+    render(
+        &scene,
+        &camera,
+        &RenderOptions::default(),
+        Rect::full(&camera),
+        Target::Buffer(&mut pixels),
+        None,
+    )?;
 
     // 1. Compare; on the first run there is no golden yet: create it, as
     //    `UPDATE_GOLDEN=1` would (`update(true)` forces it in code).

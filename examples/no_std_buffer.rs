@@ -18,8 +18,8 @@
 
 use voxtrace::glam::{IVec3, Vec3};
 use voxtrace::{
-    render, Camera, CameraSettings, DenseScene, IAabb, Node, OctreeLen, OctreeScene, RenderOptions,
-    VoxelGenerator,
+    render, Camera, CameraSettings, DenseScene, IAabb, Node, OctreeLen, OctreeScene, Rect,
+    RenderOptions, Target, VoxelGenerator,
 };
 
 /// The volume: a 32^3 box around a hilltop of the seed-7 terrain (the
@@ -77,7 +77,14 @@ fn main() -> Result<(), voxtrace::Error> {
 
     // Build into the buffers and render into the fixed frames.
     let scene = DenseScene::build_in(&terrain, BOUNDS, &mut dense)?;
-    let stats = render(&scene, &camera, &options, &mut frame_dense)?;
+    let stats = render(
+        &scene,
+        &camera,
+        &options,
+        Rect::full(&camera),
+        Target::Buffer(&mut frame_dense),
+        None,
+    )?;
     // The octree gets exactly what `required_len` reported: it is enough.
     let scene = OctreeScene::build_in(
         &terrain,
@@ -85,7 +92,14 @@ fn main() -> Result<(), voxtrace::Error> {
         &mut nodes[..octree_needed.nodes],
         &mut materials[..octree_needed.materials],
     )?;
-    render(&scene, &camera, &options, &mut frame_octree)?;
+    render(
+        &scene,
+        &camera,
+        &options,
+        Rect::full(&camera),
+        Target::Buffer(&mut frame_octree),
+        None,
+    )?;
 
     println!(
         "{WIDTH}x{HEIGHT}, {} primary rays, {} hits",

@@ -21,7 +21,8 @@
 //! allocates nothing.
 //!
 //! ```
-//! use voxtrace::{render, Camera, CameraSettings, IAabb, OctreeScene, RenderOptions, VoxelGenerator};
+//! use voxtrace::{render, Camera, CameraSettings, IAabb, OctreeScene, Rect, RenderOptions, Target};
+//! use voxtrace::VoxelGenerator;
 //!
 //! let terrain = VoxelGenerator::new(42);
 //! let scene = OctreeScene::build(&terrain, IAabb::centered(32))?;
@@ -32,7 +33,8 @@
 //!     ..CameraSettings::default()
 //! })?;
 //! let mut pixels = vec![0u32; 64 * 36];
-//! let stats = render(&scene, &camera, &RenderOptions::default(), &mut pixels)?;
+//! let (frame, options) = (Rect::full(&camera), RenderOptions::default());
+//! let stats = render(&scene, &camera, &options, frame, Target::Buffer(&mut pixels), None)?;
 //! assert_eq!(stats.primary_rays, 64 * 36);
 //! # Ok::<(), voxtrace::Error>(())
 //! ```
@@ -42,8 +44,8 @@
 //! - `std` (default): the atomic [`Framebuffer`]; implies `alloc`.
 //! - `rayon` (default): the framebuffer's parallel pixel iterator and
 //!   zeroing ([`Framebuffer::new_parallel`]), the threaded render
-//!   ([`render_parallel`], byte-identical to the scalar one) and parallel
-//!   storage builds; implies `std`.
+//!   ([`Target::Framebuffer`], byte-identical to the render on this
+//!   thread) and parallel storage builds; implies `std`.
 //! - `png` (default): PNG encoding and decoding of frames, and the
 //!   [`Golden`] helper for golden-image tests; implies `std`.
 //! - `vox`: MagicaVoxel `.vox` scenes as a [`VoxelSource`] (`VoxModel`),
@@ -56,7 +58,7 @@
 //!   it those frames get the face-shaded look, every material shaded as
 //!   diffuse, and the [`EffectPlan`]'s description says so. Its frames
 //!   may take their samples in rounds a caller stops between
-//!   ([`render_region_in_rounds`], [`Rounds`]; a time budget).
+//!   ([`render_in_rounds`], [`Rounds`]; a time budget).
 //! - `effect-kernels` (default): one pixel kernel compiled per set of
 //!   effects, so an effect that is off costs nothing per ray. Without it
 //!   each look has one kernel that tests the effects per pixel: the same
@@ -103,14 +105,12 @@ pub use material::{Material, MaterialKind, MaterialKinds, Materials, SceneMateri
 pub use render::adaptive::Adaptive;
 pub use render::camera::{Camera, CameraSettings, DEFAULT_FOV};
 pub use render::fit::Framer;
+pub use render::frame::{render, render_in_rounds, RowsDone, Target};
 pub use render::options::{
     Background, Bounces, Fog, Lighting, Occlusion, RenderOptions, DEFAULT_SUN,
 };
 pub use render::plan::{EffectPlan, Look};
 pub use render::rounds::{PixelSamples, Rounds, RoundsDone, UNIFORM_ROUND};
-pub use render::scalar::{
-    render, render_pixel, render_region, render_region_in_rounds, render_span,
-};
 pub use render::shade::{pack, shade, sky, unpack, FLAT_SKY, SKY_HORIZON, SKY_ZENITH};
 pub use render::stats::{RayStats, Rect};
 pub use render::view::{Orbit, Projection, ViewPreset};
@@ -144,11 +144,7 @@ pub use io::png::{decode_png, encode_png, encode_png_with_text, read_png, write_
 #[cfg(feature = "std")]
 pub use render::framebuffer::Framebuffer;
 #[cfg(feature = "rayon")]
-pub use render::parallel::pixels::{ParPixels, PixelRef, Pixels};
-#[cfg(feature = "rayon")]
-pub use render::parallel::rounds::render_parallel_in_rounds;
-#[cfg(feature = "rayon")]
-pub use render::parallel::{render_parallel, render_parallel_with_progress};
+pub use render::pixels::{ParPixels, PixelRef, Pixels};
 
 /// Re-export of rayon, whose pools run the parallel render and builds.
 #[cfg(feature = "rayon")]

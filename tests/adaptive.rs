@@ -7,13 +7,13 @@
 
 mod common;
 
-use common::frames::scalar;
+use common::frames::{pixel, scalar};
 use common::sources::clutter;
 use voxtrace::glam::{IVec3, Vec3};
 use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{
-    render_parallel, render_pixel, render_region, Adaptive, Camera, CameraSettings, EffectPlan,
-    Framebuffer, IAabb, Look, Node, OctreeScene, Rect, RenderOptions, VoxelSource, WithMaterials,
+    render, Adaptive, Camera, CameraSettings, EffectPlan, Framebuffer, IAabb, Look, Node,
+    OctreeScene, Rect, RenderOptions, Target, VoxelSource, WithMaterials,
 };
 
 /// A 40x30 view of the clutter from above its edge, the sky in its top
@@ -70,7 +70,16 @@ fn adaptive_frames_are_the_same_on_every_thread_count_crop_and_pixel() {
                 .unwrap();
             let frame = Framebuffer::new(40, 30).unwrap();
             let threaded = pool
-                .install(|| render_parallel(scene, &cam, &options, Rect::full(&cam), &frame))
+                .install(|| {
+                    render(
+                        scene,
+                        &cam,
+                        &options,
+                        Rect::full(&cam),
+                        Target::Framebuffer(&frame),
+                        None,
+                    )
+                })
                 .unwrap();
             assert!(frame.into_pixels() == single, "{threads} threads differ");
             assert_eq!(threaded, stats, "{threads} threads count other rays");
@@ -89,7 +98,15 @@ fn adaptive_frames_are_the_same_on_every_thread_count_crop_and_pixel() {
                 height,
             };
             let mut pixels = vec![0; (width * height) as usize];
-            render_region(scene, &cam, &options, crop, &mut pixels).unwrap();
+            render(
+                scene,
+                &cam,
+                &options,
+                crop,
+                Target::Buffer(&mut pixels),
+                None,
+            )
+            .unwrap();
             for row in 0..height {
                 let full = &single[((y + row) * 40 + x) as usize..][..width as usize];
                 let cut = &pixels[(row * width) as usize..][..width as usize];
@@ -97,7 +114,7 @@ fn adaptive_frames_are_the_same_on_every_thread_count_crop_and_pixel() {
             }
         }
         for (x, y) in [(0, 0), (17, 20), (39, 29), (22, 11)] {
-            let (pixel, _) = render_pixel(scene, &cam, &options, x, y);
+            let (pixel, _) = pixel(scene, &cam, &options, (x, y));
             assert_eq!(pixel, single[(y * 40 + x) as usize], "pixel {x},{y}");
         }
     });
@@ -111,7 +128,7 @@ fn sky_pixels_stop_at_the_minimum_and_noisy_ones_sample_on() {
         let (mut sky, mut more, mut most) = (0, 0, 0);
         for y in 0..30 {
             for x in 0..40 {
-                let (_, rays) = render_pixel(scene, &cam, &options, x, y);
+                let (_, rays) = pixel(scene, &cam, &options, (x, y));
                 let taken = rays.primary_rays;
                 // Rounds of min_samples, up to max_samples.
                 assert!(

@@ -9,7 +9,8 @@ use common::reference::{as_ref_hit, first_hit, first_hit_among};
 use common::sources::speckle;
 use voxtrace::glam::{IVec3, Vec3};
 use voxtrace::{
-    max_steps, DenseScene, IAabb, OctreeScene, Ray, Scene, VoxelGenerator, VoxelSource,
+    max_steps, DenseScene, IAabb, OctreeScene, Ray, Rect, Scene, Target, VoxelGenerator,
+    VoxelSource,
 };
 
 fn assert_backends_agree<S: VoxelSource>(source: &S, bounds: IAabb, rays: usize, seed: u64) {
@@ -139,8 +140,24 @@ fn backends_render_byte_identical_images() {
                 RenderOptions::default()
             };
             let (mut a, mut b) = (vec![0u32; 96 * 54], vec![0u32; 96 * 54]);
-            let sa = render(&dense, &camera, &options, &mut a).unwrap();
-            let sb = render(&octree, &camera, &options, &mut b).unwrap();
+            let sa = render(
+                &dense,
+                &camera,
+                &options,
+                Rect::full(&camera),
+                Target::Buffer(&mut a),
+                None,
+            )
+            .unwrap();
+            let sb = render(
+                &octree,
+                &camera,
+                &options,
+                Rect::full(&camera),
+                Target::Buffer(&mut b),
+                None,
+            )
+            .unwrap();
             assert_eq!(sa, sb);
             assert!(a == b, "seed {seed}: images differ");
             assert!(

@@ -10,13 +10,14 @@
 
 mod common;
 
+use common::frames::pixel;
 use common::reference::{as_ref_hit, first_hit_among};
 use common::sources::{solids, speckle};
 use proptest::prelude::*;
 use voxtrace::glam::Vec3;
 use voxtrace::{
-    Camera, CameraSettings, IAabb, OctreeScene, Projection, Reach, Scene, VoxelGenerator,
-    VoxelSource, WalkMemory,
+    Camera, CameraSettings, IAabb, OctreeScene, Projection, Reach, Rect, Scene, Target,
+    VoxelGenerator, VoxelSource, WalkMemory,
 };
 
 /// Checks every pixel of the `tile_w x tile_h` tile at `(tx, ty)`.
@@ -307,18 +308,38 @@ fn extreme_cameras_and_spans_render_without_panics() {
     })
     .unwrap();
     let mut out = vec![0; 64];
-    voxtrace::render(&scene, &far, &options, &mut out).unwrap();
+    let whole = Rect::full(&far);
+    voxtrace::render(
+        &scene,
+        &far,
+        &options,
+        whole,
+        Target::Buffer(&mut out),
+        None,
+    )
+    .unwrap();
     // A span ending at the last pixel of the widest frame: tiles must not
     // overflow, and the span's pixels are the single-pixel renders.
     let wide = camera(u32::MAX, 2, Vec3::new(20.0, 12.0, 9.0), Vec3::ZERO, 60.0).unwrap();
     let mut span = [0u32; 3];
-    voxtrace::render_span(&scene, &wide, &options, u32::MAX - 3, 1, &mut span);
-    for (i, &pixel) in span.iter().enumerate() {
+    let row = Rect {
+        x: u32::MAX - 3,
+        y: 1,
+        width: 3,
+        height: 1,
+    };
+    voxtrace::render(
+        &scene,
+        &wide,
+        &options,
+        row,
+        Target::Buffer(&mut span),
+        None,
+    )
+    .unwrap();
+    for (i, &alone) in span.iter().enumerate() {
         let x = u32::MAX - 3 + i as u32;
-        assert_eq!(
-            pixel,
-            voxtrace::render_pixel(&scene, &wide, &options, x, 1).0
-        );
+        assert_eq!(alone, pixel(&scene, &wide, &options, (x, 1)).0);
     }
 }
 

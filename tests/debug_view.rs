@@ -3,8 +3,8 @@
 
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
-    render, sky, Camera, CameraSettings, DenseScene, FnSource, IAabb, OctreeScene, Palette,
-    RenderOptions, Scene,
+    render, sky, Camera, CameraSettings, DenseScene, FnSource, IAabb, OctreeScene, Palette, Rect,
+    RenderOptions, Scene, Target,
 };
 
 fn debug() -> RenderOptions {
@@ -15,7 +15,7 @@ fn debug() -> RenderOptions {
 }
 
 /// One pixel, looking straight down from high above `(x, z)`.
-fn pixel_above(scene: &impl Scene, x: f32, z: f32) -> (u32, Option<voxtrace::Hit>) {
+fn pixel_above(scene: &(impl Scene + Sync), x: f32, z: f32) -> (u32, Option<voxtrace::Hit>) {
     let camera = Camera::new(CameraSettings {
         width: 1,
         height: 1,
@@ -27,7 +27,15 @@ fn pixel_above(scene: &impl Scene, x: f32, z: f32) -> (u32, Option<voxtrace::Hit
     })
     .unwrap();
     let mut pixel = [0];
-    render(scene, &camera, &debug(), &mut pixel).unwrap();
+    render(
+        scene,
+        &camera,
+        &debug(),
+        Rect::full(&camera),
+        Target::Buffer(&mut pixel),
+        None,
+    )
+    .unwrap();
     (pixel[0], scene.trace(&camera.get_ray(0, 0)))
 }
 
@@ -69,7 +77,7 @@ fn voxels_are_black_and_the_sky_stays_where_nothing_is_hit() {
     let bounds = IAabb::centered(8);
     let octree = OctreeScene::build(&floor, bounds).unwrap();
     let dense = DenseScene::build(&floor, bounds).unwrap();
-    let scenes: [&dyn Scene; 2] = [&octree, &dense];
+    let scenes: [&(dyn Scene + Sync); 2] = [&octree, &dense];
     for scene in scenes {
         // The dense array's boxes are its unit cells: stay off their edges.
         let (p, hit) = pixel_above(&scene, 2.5, 5.5);

@@ -10,7 +10,7 @@ use proptest::prelude::*;
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
     render, unpack, Camera, CameraSettings, DenseScene, FnSource, Fog, IAabb, Occlusion,
-    OctreeScene, Palette, RenderOptions, Scene, VoxelGenerator, SKY_HORIZON,
+    OctreeScene, Palette, Rect, RenderOptions, Scene, Target, VoxelGenerator, SKY_HORIZON,
 };
 
 /// Primary hits of the frame, counted from the tracer alone: all of them,
@@ -234,7 +234,15 @@ fn invalid_options_are_errors_that_name_the_setting() {
         },
     ];
     for options in bad {
-        let err = render(&scene, &camera, &options, &mut pixels).unwrap_err();
+        let err = render(
+            &scene,
+            &camera,
+            &options,
+            Rect::full(&camera),
+            Target::Buffer(&mut pixels),
+            None,
+        )
+        .unwrap_err();
         assert!(
             matches!(err, voxtrace::Error::InvalidOptions { .. }),
             "{options:?}: {err}"

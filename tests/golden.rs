@@ -9,9 +9,8 @@ use std::path::{Path, PathBuf};
 use voxtrace::glam::{IVec3, Vec3};
 use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{
-    pack, read_png, render_parallel, render_region, Camera, CameraSettings, DenseScene, Fog,
-    Framebuffer, Golden, GoldenError, IAabb, Occlusion, OctreeScene, Rect, RenderOptions, Scene,
-    VoxelGenerator,
+    pack, read_png, Camera, CameraSettings, DenseScene, Fog, Framebuffer, Golden, GoldenError,
+    IAabb, Occlusion, OctreeScene, Rect, RenderOptions, Scene, Target, VoxelGenerator,
 };
 
 const WIDTH: u32 = 128;
@@ -93,7 +92,15 @@ fn render(
 ) -> Vec<u32> {
     if threads == 1 {
         let mut pixels = vec![0; (region.width * region.height) as usize];
-        render_region(scene, camera, options, region, &mut pixels).unwrap();
+        voxtrace::render(
+            scene,
+            camera,
+            options,
+            region,
+            Target::Buffer(&mut pixels),
+            None,
+        )
+        .unwrap();
         pixels
     } else {
         let frame = Framebuffer::new(region.width, region.height).unwrap();
@@ -101,8 +108,17 @@ fn render(
             .num_threads(threads)
             .build()
             .unwrap();
-        pool.install(|| render_parallel(scene, camera, options, region, &frame))
-            .unwrap();
+        pool.install(|| {
+            voxtrace::render(
+                scene,
+                camera,
+                options,
+                region,
+                Target::Framebuffer(&frame),
+                None,
+            )
+        })
+        .unwrap();
         frame.into_pixels()
     }
 }

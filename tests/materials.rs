@@ -11,7 +11,7 @@ use common::sources::clutter;
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
     render, unpack, Bounces, Camera, CameraSettings, DenseScene, EffectPlan, FnSource, IAabb,
-    Lighting, Look, Material, Materials, OctreeScene, Palette, RenderOptions, Scene,
+    Lighting, Look, Material, Materials, OctreeScene, Palette, Rect, RenderOptions, Scene, Target,
     VoxelGenerator, WithMaterials,
 };
 
@@ -53,9 +53,17 @@ fn camera(from: Vec3, at: Vec3, size: u32, fov: f32) -> Camera {
 }
 
 /// Renders and unpacks to RGB rows.
-fn frame<S: Scene>(scene: &S, camera: &Camera, options: &RenderOptions) -> Vec<[u8; 3]> {
+fn frame<S: Scene + Sync>(scene: &S, camera: &Camera, options: &RenderOptions) -> Vec<[u8; 3]> {
     let mut out = vec![0u32; (camera.width() * camera.height()) as usize];
-    render(scene, camera, options, &mut out).unwrap();
+    render(
+        scene,
+        camera,
+        options,
+        Rect::full(camera),
+        Target::Buffer(&mut out),
+        None,
+    )
+    .unwrap();
     out.iter()
         .map(|&p| {
             let [r, g, b, _] = unpack(p);
@@ -309,7 +317,15 @@ fn all_diffuse_scenes_keep_the_face_shaded_kernels_byte_for_byte() {
             frame(&storage, &cam, &options)
         );
         let mut out = vec![0u32; 1600];
-        let stats = render(&storage, &cam, &options, &mut out).unwrap();
+        let stats = render(
+            &storage,
+            &cam,
+            &options,
+            Rect::full(&cam),
+            Target::Buffer(&mut out),
+            None,
+        )
+        .unwrap();
         assert_eq!(
             (
                 stats.reflection_rays,
@@ -395,10 +411,27 @@ fn a_mixed_material_scene_is_the_same_on_both_backends_two_threads_and_a_crop() 
         .build()
         .unwrap();
     let fb = voxtrace::Framebuffer::new(48, 48).unwrap();
-    pool.install(|| voxtrace::render_parallel(&a, &cam, &options, voxtrace::Rect::full(&cam), &fb))
-        .unwrap();
+    pool.install(|| {
+        voxtrace::render(
+            &a,
+            &cam,
+            &options,
+            voxtrace::Rect::full(&cam),
+            Target::Framebuffer(&fb),
+            None,
+        )
+    })
+    .unwrap();
     let mut single = vec![0u32; 48 * 48];
-    let stats = render(&a, &cam, &options, &mut single).unwrap();
+    let stats = render(
+        &a,
+        &cam,
+        &options,
+        Rect::full(&cam),
+        Target::Buffer(&mut single),
+        None,
+    )
+    .unwrap();
     assert!(fb.into_pixels() == single, "2 threads differ");
     let crop = voxtrace::Rect {
         x: 5,
@@ -407,7 +440,7 @@ fn a_mixed_material_scene_is_the_same_on_both_backends_two_threads_and_a_crop() 
         height: 17,
     };
     let mut c = vec![0u32; 30 * 17];
-    voxtrace::render_region(&a, &cam, &options, crop, &mut c).unwrap();
+    voxtrace::render(&a, &cam, &options, crop, Target::Buffer(&mut c), None).unwrap();
     for row in 0..17 {
         assert!(
             c[row * 30..][..30] == single[(9 + row) * 48 + 5..][..30],

@@ -6,12 +6,20 @@
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
     render, unpack, Background, Camera, CameraSettings, EffectPlan, FnSource, IAabb, Look,
-    Material, Materials, OctreeScene, Palette, RenderOptions, Scene, WithMaterials,
+    Material, Materials, OctreeScene, Palette, Rect, RenderOptions, Scene, Target, WithMaterials,
 };
 
-fn frame<S: Scene>(scene: &S, camera: &Camera, options: &RenderOptions) -> Vec<[u8; 4]> {
+fn frame<S: Scene + Sync>(scene: &S, camera: &Camera, options: &RenderOptions) -> Vec<[u8; 4]> {
     let mut out = vec![0u32; (camera.width() * camera.height()) as usize];
-    render(scene, camera, options, &mut out).unwrap();
+    render(
+        scene,
+        camera,
+        options,
+        Rect::full(camera),
+        Target::Buffer(&mut out),
+        None,
+    )
+    .unwrap();
     out.iter().map(|&p| unpack(p)).collect()
 }
 

@@ -13,9 +13,9 @@ use common::sources::clutter;
 use voxtrace::glam::{IVec3, Vec3};
 use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{
-    render_parallel_in_rounds, render_region, render_region_in_rounds, Adaptive, Background,
-    Camera, CameraSettings, EffectPlan, Framebuffer, IAabb, Look, Node, OctreeScene, PixelSamples,
-    Rect, RenderOptions, Rounds, RoundsDone, VoxelSource, WithMaterials,
+    render, render_in_rounds, Adaptive, Background, Camera, CameraSettings, EffectPlan,
+    Framebuffer, IAabb, Look, Node, OctreeScene, PixelSamples, Rect, RenderOptions, Rounds,
+    RoundsDone, Target, VoxelSource, WithMaterials,
 };
 
 /// A 40x30 view of the clutter (tiles of 16 cut at 32 and 16), the sky in
@@ -80,10 +80,19 @@ fn in_rounds(
     let area = (region.width * region.height) as usize;
     let (mut out, mut pixels) = (vec![0; area], vec![PixelSamples::default(); area]);
     let mut asked = Vec::new();
-    let done = render_region_in_rounds(scene, cam, options, region, &mut out, &mut pixels, |n| {
-        asked.push(n);
-        n < stop
-    })
+    let done = render_in_rounds(
+        scene,
+        cam,
+        options,
+        region,
+        Target::Buffer(&mut out),
+        &mut pixels,
+        None,
+        |n| {
+            asked.push(n);
+            n < stop
+        },
+    )
     .unwrap();
     // Asked once after each round but the last of a complete frame.
     let expected: Vec<u32> = (1..=done.rounds - u32::from(done.complete)).collect();
@@ -142,14 +151,14 @@ fn threads_and_crops_take_the_same_rounds_to_the_same_bytes() {
                     let mut pixels = vec![PixelSamples::default(); 40 * 30];
                     let threaded = pool
                         .install(|| {
-                            render_parallel_in_rounds(
+                            render_in_rounds(
                                 scene,
                                 &cam,
                                 &options,
                                 full,
-                                &frame,
+                                Target::Framebuffer(&frame),
                                 &mut pixels,
-                                &|_| {},
+                                Some(&|_| {}),
                                 |n| n < stop,
                             )
                         })
@@ -169,7 +178,15 @@ fn threads_and_crops_take_the_same_rounds_to_the_same_bytes() {
                 let plan = EffectPlan::of(scene, &options);
                 let after = Rounds::of(&plan).options_after(&plan, done.rounds);
                 let mut one_pass = vec![0; 30 * 17];
-                render_region(scene, &cam, &after, crop, &mut one_pass).unwrap();
+                render(
+                    scene,
+                    &cam,
+                    &after,
+                    crop,
+                    Target::Buffer(&mut one_pass),
+                    None,
+                )
+                .unwrap();
                 assert!(cut == one_pass, "crop after {} rounds", done.rounds);
                 for row in 0..17 {
                     let whole = &single[((9 + row) * 40 + 5) as usize..][..30];
@@ -198,13 +215,14 @@ fn a_face_shaded_frame_is_one_round() {
         assert_eq!(Rounds::of(&plan).most, 1);
         let mut out = vec![0; 40 * 30];
         let mut pixels = vec![PixelSamples::default(); 40 * 30];
-        let done = render_region_in_rounds(
+        let done = render_in_rounds(
             &terrain,
             &cam,
             &options,
             Rect::full(&cam),
-            &mut out,
+            Target::Buffer(&mut out),
             &mut pixels,
+            None,
             |_| panic!("asked after the only round"),
         )
         .unwrap();
@@ -226,8 +244,17 @@ fn each_pixels_mean_radiance_is_what_its_color_rounds() {
             let mut out = vec![0; 40 * 30];
             let mut pixels = vec![PixelSamples::default(); 40 * 30];
             let full = Rect::full(&cam);
-            render_region_in_rounds(scene, &cam, &options, full, &mut out, &mut pixels, |_| true)
-                .unwrap();
+            render_in_rounds(
+                scene,
+                &cam,
+                &options,
+                full,
+                Target::Buffer(&mut out),
+                &mut pixels,
+                None,
+                |_| true,
+            )
+            .unwrap();
             let mut above_white = 0;
             for (&packed, pixel) in out.iter().zip(&pixels) {
                 let mean = pixel.mean_radiance().expect("every pixel is path-traced");
@@ -257,8 +284,16 @@ fn short_buffers_are_refused() {
         let full = Rect::full(&cam);
         let mut out = vec![0; 40 * 30];
         let mut pixels = vec![PixelSamples::default(); 40 * 30 - 1];
-        let refused =
-            render_region_in_rounds(scene, &cam, &options, full, &mut out, &mut pixels, |_| true);
+        let refused = render_in_rounds(
+            scene,
+            &cam,
+            &options,
+            full,
+            Target::Buffer(&mut out),
+            &mut pixels,
+            None,
+            |_| true,
+        );
         assert!(matches!(
             refused,
             Err(voxtrace::Error::BufferTooSmall { .. })

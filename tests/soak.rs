@@ -11,8 +11,8 @@ use std::collections::HashMap;
 
 use voxtrace::glam::Vec3;
 use voxtrace::{
-    render_parallel, render_region, Camera, CameraSettings, DenseScene, Fog, Framebuffer, IAabb,
-    Occlusion, OctreeScene, Rect, RenderOptions, Scene, VoxelGenerator,
+    render, Camera, CameraSettings, DenseScene, Fog, Framebuffer, IAabb, Occlusion, OctreeScene,
+    Rect, RenderOptions, Scene, Target, VoxelGenerator,
 };
 
 /// Resident set of this process in bytes (Linux); `None` elsewhere.
@@ -93,11 +93,27 @@ fn soak(renders: usize) {
         let (options, region) = (&effects[effect], crops[crop]);
         let pixels = if n % 7 < 4 {
             let frame = Framebuffer::new(region.width, region.height).unwrap();
-            render_parallel(scene, &camera, options, region, &frame).unwrap();
+            render(
+                scene,
+                &camera,
+                options,
+                region,
+                Target::Framebuffer(&frame),
+                None,
+            )
+            .unwrap();
             frame.into_pixels()
         } else {
             let mut out = vec![0; region.width as usize * region.height as usize];
-            render_region(scene, &camera, options, region, &mut out).unwrap();
+            render(
+                scene,
+                &camera,
+                options,
+                region,
+                Target::Buffer(&mut out),
+                None,
+            )
+            .unwrap();
             out
         };
         // Backends and paths give the same bytes: one reference per frame.

@@ -13,7 +13,7 @@ use common::sources::{solids, speckle, ListSource};
 use voxtrace::glam::{IVec3, Vec3};
 use voxtrace::{
     max_steps, render, Camera, CameraSettings, DenseScene, Error, Face, Hit, IAabb, Node,
-    OctreeScene, Ray, RenderOptions, Scene, VoxelSource,
+    OctreeScene, Ray, Rect, RenderOptions, Scene, Target, VoxelSource,
 };
 
 struct Fixture {
@@ -260,7 +260,7 @@ fn stability_camera_inside_a_solid_voxel_hits_it_at_zero() {
         (IVec3::ZERO, Some(Face::PosX), 0.0)
     );
     // Rendering from inside: every pixel is that voxel, at half light.
-    for scene in [&f.octree as &dyn Scene, f.dense.as_ref().unwrap()] {
+    for scene in [&f.octree as &(dyn Scene + Sync), f.dense.as_ref().unwrap()] {
         let camera = Camera::new(CameraSettings {
             width: 16,
             height: 9,
@@ -270,7 +270,15 @@ fn stability_camera_inside_a_solid_voxel_hits_it_at_zero() {
         })
         .unwrap();
         let mut pixels = vec![0; 16 * 9];
-        let stats = render(&scene, &camera, &RenderOptions::default(), &mut pixels).unwrap();
+        let stats = render(
+            &scene,
+            &camera,
+            &RenderOptions::default(),
+            Rect::full(&camera),
+            Target::Buffer(&mut pixels),
+            None,
+        )
+        .unwrap();
         assert_eq!(stats.primary_hits, 16 * 9);
         assert!(pixels.iter().all(|&p| p == pixels[0]));
     }
@@ -515,7 +523,7 @@ fn expected_pixel(hit: Option<&Hit>, ray: &Ray) -> u32 {
 #[test]
 fn stability_no_nan_reaches_a_pixel() {
     let f = Fixture::speckled(10, 30, cube(8));
-    let scenes: [&dyn Scene; 2] = [&f.octree, f.dense.as_ref().unwrap()];
+    let scenes: [&(dyn Scene + Sync); 2] = [&f.octree, f.dense.as_ref().unwrap()];
     let cameras = [
         (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), 179.9), // inside, on corners
         (Vec3::new(8.0, 8.0, 8.0), Vec3::ZERO, 0.01),                // on the volume's corner
@@ -535,7 +543,15 @@ fn stability_no_nan_reaches_a_pixel() {
         .unwrap();
         for scene in scenes {
             let mut pixels = vec![0; 40 * 30];
-            render(&scene, &camera, &RenderOptions::default(), &mut pixels).unwrap();
+            render(
+                &scene,
+                &camera,
+                &RenderOptions::default(),
+                Rect::full(&camera),
+                Target::Buffer(&mut pixels),
+                None,
+            )
+            .unwrap();
             for (k, &p) in pixels.iter().enumerate() {
                 let r = camera.get_ray(k as u32 % 40, k as u32 / 40);
                 assert!(r.dir().is_finite() && (r.dir().length() - 1.0).abs() < 1e-5);

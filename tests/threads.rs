@@ -4,15 +4,15 @@
 
 mod common;
 
-use common::frames::{camera, scalar};
+use common::frames::{camera, pixel, scalar};
 use common::sources::speckle;
 use proptest::prelude::*;
 use voxtrace::glam::{IVec3, Vec3};
 use voxtrace::rayon::prelude::*;
 use voxtrace::rayon::{ThreadPool, ThreadPoolBuilder};
 use voxtrace::{
-    render_parallel, render_pixel, render_region, Camera, DenseScene, Error, Fog, Framebuffer,
-    IAabb, Occlusion, OctreeScene, RayStats, Rect, RenderOptions, Scene, VoxelGenerator,
+    render, Camera, DenseScene, Error, Fog, Framebuffer, IAabb, Occlusion, OctreeScene, RayStats,
+    Rect, RenderOptions, Scene, Target, VoxelGenerator,
 };
 
 fn pool(threads: usize) -> ThreadPool {
@@ -31,7 +31,16 @@ fn parallel(
 ) -> (Vec<u32>, RayStats) {
     let frame = Framebuffer::new(region.width, region.height).unwrap();
     let stats = pool
-        .install(|| render_parallel(scene, camera, options, region, &frame))
+        .install(|| {
+            render(
+                scene,
+                camera,
+                options,
+                region,
+                Target::Framebuffer(&frame),
+                None,
+            )
+        })
         .unwrap();
     (frame.into_pixels(), stats)
 }
@@ -80,17 +89,17 @@ fn threaded_renders_equal_the_scalar_render_for_1_2_3_and_8_threads() {
                 assert_eq!(octree_stats, dense_stats, "{options:?}");
             }
             hits += dense_stats.primary_hits;
-            // Each pixel is the one `render_pixel` defines, alone: the
+            // Each pixel is the pixel rendered alone: the
             // octree's frame traces its rays in packets (camera rays, and
             // the shadow and occlusion rays of every sample), so this
             // holds packets to the one-ray walks.
             if !options.debug {
                 let width = camera.width() as usize;
                 let mut alone_stats = RayStats::default();
-                for (i, &pixel) in octree_pixels.iter().enumerate() {
+                for (i, &framed) in octree_pixels.iter().enumerate() {
                     let (x, y) = ((i % width) as u32, (i / width) as u32);
-                    let (alone, rays) = render_pixel(&octree, camera, &options, x, y);
-                    assert_eq!(pixel, alone, "pixel ({x}, {y}), {options:?}");
+                    let (alone, rays) = pixel(&octree, camera, &options, (x, y));
+                    assert_eq!(framed, alone, "pixel ({x}, {y}), {options:?}");
                     alone_stats += rays;
                 }
                 assert_eq!(alone_stats, octree_stats, "{options:?}");
@@ -140,7 +149,7 @@ proptest! {
         let expected = crop(&full, 90, region);
 
         let mut pixels = vec![0; (region.width * region.height) as usize];
-        let stats = render_region(&scene, &camera, &options, region, &mut pixels).unwrap();
+        let stats = render(&scene, &camera, &options, region, Target::Buffer(&mut pixels), None).unwrap();
         prop_assert_eq!(&pixels, &expected);
         prop_assert_eq!(stats.primary_rays, u64::from(region.width * region.height));
         let (pixels, threaded_stats) = parallel(&pool(threads), &scene, &camera, &options, region);
@@ -290,7 +299,15 @@ fn parallel_render_rejects_a_frame_of_the_wrong_size_or_a_region_outside() {
     let frame = Framebuffer::new(20, 9).unwrap();
     let full = Rect::full(&camera);
     assert_eq!(
-        render_parallel(&scene, &camera, &options, full, &frame).unwrap_err(),
+        render(
+            &scene,
+            &camera,
+            &options,
+            full,
+            Target::Framebuffer(&frame),
+            None
+        )
+        .unwrap_err(),
         Error::SizeMismatch {
             expected: (20, 10),
             actual: (20, 9)
@@ -303,7 +320,15 @@ fn parallel_render_rejects_a_frame_of_the_wrong_size_or_a_region_outside() {
         height: 9,
     };
     let frame = Framebuffer::new(6, 9).unwrap();
-    assert!(render_parallel(&scene, &camera, &options, outside, &frame).is_err());
+    assert!(render(
+        &scene,
+        &camera,
+        &options,
+        outside,
+        Target::Framebuffer(&frame),
+        None
+    )
+    .is_err());
     assert!(frame
         .pixels()
         .iter()

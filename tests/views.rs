@@ -11,8 +11,8 @@ use proptest::prelude::*;
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{
-    render_parallel, unpack, Background, Camera, CameraSettings, DenseScene, FnSource, Framebuffer,
-    Framer, IAabb, OctreeScene, Orbit, Palette, Projection, Rect, RenderOptions, Scene, ViewPreset,
+    render, unpack, Background, Camera, CameraSettings, DenseScene, FnSource, Framebuffer, Framer,
+    IAabb, OctreeScene, Orbit, Palette, Projection, Rect, RenderOptions, Scene, Target, ViewPreset,
     VoxelGenerator, VoxelSource,
 };
 
@@ -41,8 +41,17 @@ fn frame(
         .build()
         .unwrap();
     let fb = Framebuffer::new(camera.width(), camera.height()).unwrap();
-    pool.install(|| render_parallel(scene, camera, options, Rect::full(camera), &fb))
-        .unwrap();
+    pool.install(|| {
+        render(
+            scene,
+            camera,
+            options,
+            Rect::full(camera),
+            Target::Framebuffer(&fb),
+            None,
+        )
+    })
+    .unwrap();
     fb.into_pixels()
 }
 

@@ -10,8 +10,8 @@ use std::collections::BTreeSet;
 use dot_vox::{Color, DotVoxData, Model, SceneNode, ShapeModel, Size, Voxel};
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
-    render, Camera, CameraSettings, DenseScene, Framer, OctreeScene, Projection, RenderOptions,
-    SplitMix64, VoxModel, VoxelSource,
+    render, Camera, CameraSettings, DenseScene, Framer, OctreeScene, Projection, Rect,
+    RenderOptions, SplitMix64, Target, VoxModel, VoxelSource,
 };
 
 fn palette() -> Vec<Color> {
@@ -195,8 +195,24 @@ fn both_storages_build_the_same_scene_from_a_model() {
     .unwrap();
     let mut a = vec![0; 64 * 48];
     let mut b = vec![0; 64 * 48];
-    let sa = render(&dense, &camera, &RenderOptions::default(), &mut a).unwrap();
-    render(&octree, &camera, &RenderOptions::default(), &mut b).unwrap();
+    let sa = render(
+        &dense,
+        &camera,
+        &RenderOptions::default(),
+        Rect::full(&camera),
+        Target::Buffer(&mut a),
+        None,
+    )
+    .unwrap();
+    render(
+        &octree,
+        &camera,
+        &RenderOptions::default(),
+        Rect::full(&camera),
+        Target::Buffer(&mut b),
+        None,
+    )
+    .unwrap();
     assert!(sa.primary_hits > 50, "the camera sees the models");
     assert!(a == b);
 }

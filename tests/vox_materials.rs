@@ -10,9 +10,9 @@ use std::path::PathBuf;
 use dot_vox::{Color, DotVoxData, Material as VoxMaterial, Model, Size, Voxel};
 use voxtrace::glam::Vec3;
 use voxtrace::{
-    render, render_parallel, render_region, Camera, CameraSettings, DenseScene, EffectPlan,
-    Framebuffer, Look, MaterialKind, OctreeScene, RayStats, Rect, RenderOptions, Scene,
-    SceneMaterials, VoxModel, WithMaterials,
+    render, Camera, CameraSettings, DenseScene, EffectPlan, Framebuffer, Look, MaterialKind,
+    OctreeScene, RayStats, Rect, RenderOptions, Scene, SceneMaterials, Target, VoxModel,
+    WithMaterials,
 };
 
 /// A file with one 4x1x1 model of palette indices 1..=4 and `materials`.
@@ -191,7 +191,17 @@ fn diffuse_files_trace_no_new_rays_and_study_traces_every_kind() {
     let camera = view(&cop, 48, 32);
     let mut out = vec![0u32; 48 * 32];
     assert_eq!(
-        rays(render(&scene, &camera, &options, &mut out).unwrap()),
+        rays(
+            render(
+                &scene,
+                &camera,
+                &options,
+                Rect::full(&camera),
+                Target::Buffer(&mut out),
+                None
+            )
+            .unwrap()
+        ),
         (0, 0, 0)
     );
 
@@ -206,8 +216,17 @@ fn diffuse_files_trace_no_new_rays_and_study_traces_every_kind() {
     assert!(plan.kinds.glass && plan.kinds.metal && plan.kinds.emissive);
     let camera = view(&study, 96, 54);
     let mut out = vec![0u32; 96 * 54];
-    let (reflection, refraction, light) =
-        rays(render(&scene, &camera, &options, &mut out).unwrap());
+    let (reflection, refraction, light) = rays(
+        render(
+            &scene,
+            &camera,
+            &options,
+            Rect::full(&camera),
+            Target::Buffer(&mut out),
+            None,
+        )
+        .unwrap(),
+    );
     assert!(
         reflection > 0 && refraction > 0 && light > 0,
         "{reflection} {refraction} {light}"
@@ -228,14 +247,39 @@ fn material_renders_agree_across_backends_threads_and_crops() {
         let dense = DenseScene::build(&model, model.bounds()).unwrap();
         let mut a = vec![0u32; 64 * 40];
         let mut b = vec![0u32; 64 * 40];
-        let sa = render(&with(&octree, &model), &camera, &options, &mut a).unwrap();
-        let sb = render(&with(&dense, &model), &camera, &options, &mut b).unwrap();
+        let sa = render(
+            &with(&octree, &model),
+            &camera,
+            &options,
+            Rect::full(&camera),
+            Target::Buffer(&mut a),
+            None,
+        )
+        .unwrap();
+        let sb = render(
+            &with(&dense, &model),
+            &camera,
+            &options,
+            Rect::full(&camera),
+            Target::Buffer(&mut b),
+            None,
+        )
+        .unwrap();
         assert!(a == b, "{name}: backends differ");
         assert_eq!(sa, sb, "{name}: ray counts differ");
         let frame = Framebuffer::new(64, 40).unwrap();
         let scene = with(&octree, &model);
         let st = pool
-            .install(|| render_parallel(&scene, &camera, &options, Rect::full(&camera), &frame))
+            .install(|| {
+                render(
+                    &scene,
+                    &camera,
+                    &options,
+                    Rect::full(&camera),
+                    Target::Framebuffer(&frame),
+                    None,
+                )
+            })
             .unwrap();
         assert!(frame.into_pixels() == a, "{name}: 2 threads differ from 1");
         assert_eq!(st, sa);
@@ -246,7 +290,15 @@ fn material_renders_agree_across_backends_threads_and_crops() {
             height: 21,
         };
         let mut c = vec![0u32; 29 * 21];
-        render_region(&scene, &camera, &options, crop, &mut c).unwrap();
+        render(
+            &scene,
+            &camera,
+            &options,
+            crop,
+            Target::Buffer(&mut c),
+            None,
+        )
+        .unwrap();
         for row in 0..21 {
             let full = &a[(7 + row) * 64 + 13..][..29];
             assert!(

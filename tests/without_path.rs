@@ -8,9 +8,8 @@
 
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
-    render, render_region_in_rounds, Camera, CameraSettings, DenseScene, EffectPlan, FnSource, Fog,
-    IAabb, Lighting, Look, Material, Materials, Palette, PixelSamples, Rect, RenderOptions, Rounds,
-    Scene, WithMaterials,
+    render, Camera, CameraSettings, DenseScene, EffectPlan, FnSource, Fog, IAabb, Lighting, Look,
+    Material, Materials, Palette, PixelSamples, Rect, RenderOptions, Rounds, Scene, WithMaterials,
 };
 
 /// The 32x24 camera of these frames.
@@ -27,7 +26,15 @@ fn camera() -> Camera {
 /// The pixels of `scene`'s frame under `options`.
 fn frame<S: Scene>(scene: &S, options: &RenderOptions) -> Vec<u32> {
     let mut pixels = vec![0; 32 * 24];
-    render(scene, &camera(), options, &mut pixels).unwrap();
+    render(
+        scene,
+        &camera(),
+        options,
+        Rect::full(&camera()),
+        Target::Buffer(&mut pixels),
+        None,
+    )
+    .unwrap();
     pixels
 }
 
@@ -93,13 +100,14 @@ fn metal_glass_and_emitters_are_shaded_as_diffuse_and_the_plan_says_so() {
     assert_eq!(Rounds::of(&plan).most, 1);
     let mut out = vec![0; 32 * 24];
     let mut state = vec![PixelSamples::default(); 32 * 24];
-    let done = render_region_in_rounds(
+    let done = render_in_rounds(
         &scene,
         &camera(),
         &all_diffuse,
         Rect::full(&camera()),
-        &mut out,
+        Target::Buffer(&mut out),
         &mut state,
+        None,
         |_| panic!("asked after the only round"),
     )
     .unwrap();

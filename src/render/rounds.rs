@@ -196,29 +196,6 @@ pub struct RoundsDone {
     pub complete: bool,
 }
 
-/// Runs `round(n)` for `n = 1, 2, ...` (each returning its rays and
-/// whether a pixel is left that is not done) until no pixel is left or
-/// `keep_going(n)`, asked after round `n`, says no: round 1 always runs.
-#[cfg(feature = "path")]
-pub(crate) fn in_rounds(
-    mut round: impl FnMut(u32) -> (RayStats, bool),
-    mut keep_going: impl FnMut(u32) -> bool,
-) -> RoundsDone {
-    let mut done = RoundsDone::default();
-    loop {
-        done.rounds += 1;
-        let (rays, left) = round(done.rounds);
-        done.rays += rays;
-        if !left {
-            done.complete = true;
-            return done;
-        }
-        if !keep_going(done.rounds) {
-            return done;
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

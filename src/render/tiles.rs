@@ -1,33 +1,155 @@
-//! Primary rays in tiles: the pixels of a rectangle, a square of
-//! [`TILE`] x [`TILE`] at a time, each square's rays starting at the
-//! distance its frustum of rays is known to be clear ([`Scene::clear_distance`]).
-//! A kernel that makes its pixels 8x4 at a time (`Kernel::in_blocks`:
-//! the flat and lit looks) has its tiles' rays traced 32 at a time, a
-//! block per packet ([`Scene::trace_packet`], `render/packets.rs`), in
-//! wider tiles.
+//! The one tile loop: the pixels of a rectangle, a tile at a time, each
+//! tile's camera rays starting at the distance its frustum of rays is
+//! known to be clear ([`Scene::clear_distance`]), handed to the kernel a
+//! block at a time ([`Kernel::block`]): 8x4 blocks, whose camera rays go
+//! in packets ([`Scene::trace_lanes`]), for a kernel that traces them
+//! together where the tile's rays are coherent enough ([`packets_pay`]),
+//! else lone pixels. One pass and every round of a render in rounds run
+//! it, and so does every target.
 //!
-//! The clear distance only moves where walks begin, never what they hit, so
-//! any tiling (a crop, a band of rows on one thread, a single pixel) gives
-//! the same pixels: the scalar, cropped and threaded renders stay
-//! byte-identical.
+//! The clear distance only moves where walks begin, never what they hit,
+//! and a block's pixels are the lone pixels', so any tiling (a crop, a
+//! band of rows on one thread, a single pixel) gives the same pixels: the
+//! scalar, cropped and threaded renders stay byte-identical.
 
-use crate::render::camera::Camera;
-#[cfg(feature = "packets")]
-use crate::render::packets::{in_packets, packets_pay, PACKET_TILE};
-#[cfg(feature = "path")]
+use crate::render::camera::{Camera, BLOCK_HEIGHT, BLOCK_WIDTH};
 use crate::render::rounds::PixelSamples;
-use crate::render::shader::Kernel;
-#[cfg(feature = "path")]
-use crate::render::shader::Resumable;
+use crate::render::shader::{Block, BlockSamples, Kernel};
 use crate::render::stats::{RayStats, Rect};
 use crate::scene::{Scene, WalkMemory};
 
 /// Side of a tile in pixels: 256 rays share one walk of the tree's empty
-/// space. Measured at 1920x1080 on the size-250 terrain (with the first,
-/// cone-shaped beam): 8 gave starts a little closer to the hits (3.8 moves
-/// left per ray instead of 4.2) but cost five times as much beam time (190
-/// ms against 36 ms on one thread); 32 left 4.7 moves.
+/// space (the measurements behind it are in benches/README.md).
 pub(crate) const TILE: u32 = 16;
+
+/// Width of a tile whose rays go in packets (its height stays [`TILE`]):
+/// a packet's own walk shares the empty space among its rays, and the
+/// beam pays for itself over wider tiles (benches/README.md).
+#[cfg(feature = "packets")]
+const PACKET_TILE: u32 = 64;
+
+/// The widest a packet of rays may be, in voxels, where its walk begins:
+/// beyond, rays that diverge go alone (benches/README.md).
+#[cfg(feature = "packets")]
+const MAX_SPREAD: f32 = 16.0;
+
+/// A round of a render in rounds: the round to take every pixel to, and
+/// the pixels' samples so far (row-major, stride the rectangle's width).
+pub(crate) struct Round<'a> {
+    pub(crate) n: u32,
+    pub(crate) samples: &'a mut [PixelSamples],
+}
+
+/// Renders every pixel of `rect` with `kernel`, tile by tile (row-major
+/// tiles; inside a tile, row-major blocks or pixels), handing `put(dx,
+/// dy, rgba)` each pixel made at its offset inside `rect`: in one pass
+/// (`round` `None`), or to the end of a round, where a tile whose pixels
+/// are all done is skipped whole. Returns the rays traced and whether a
+/// pixel is left that is not done. Allocates nothing.
+pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
+    kernel: &K,
+    scene: &S,
+    camera: &Camera,
+    rect: Rect,
+    mut round: Option<Round<'_>>,
+    mut put: impl FnMut(u32, u32, u32),
+) -> (RayStats, bool) {
+    let (mut stats, mut left) = (RayStats::default(), false);
+    // One memory for the whole rectangle: a tile's first ray begins from
+    // the last ray of the tile before, its neighbour.
+    let mut memory = WalkMemory::new();
+    let stride = rect.width as usize;
+    let width = tile_width(kernel);
+    // Offsets inside the rectangle, so that no sum passes u32::MAX for a
+    // rectangle that reaches the last pixel of the largest frame.
+    for dy0 in (0..rect.height).step_by(TILE as usize) {
+        let dy1 = dy0 + TILE.min(rect.height - dy0);
+        for dx0 in (0..rect.width).step_by(width as usize) {
+            let dx1 = dx0 + width.min(rect.width - dx0);
+            let tile = Rect {
+                x: dx0,
+                y: dy0,
+                width: dx1 - dx0,
+                height: dy1 - dy0,
+            };
+            let done = |samples: &[PixelSamples]| {
+                (dy0..dy1).all(|dy| {
+                    let row = dy as usize * stride;
+                    samples[row + dx0 as usize..row + dx1 as usize]
+                        .iter()
+                        .all(PixelSamples::is_done)
+                })
+            };
+            if K::RESUMES && round.as_ref().is_some_and(|r| done(r.samples)) {
+                continue;
+            }
+            let (x0, y0) = (rect.x.wrapping_add(dx0), rect.y.wrapping_add(dy0));
+            let (x1, y1) = (rect.x.wrapping_add(dx1), rect.y.wrapping_add(dy1));
+            // (A tile past u32::MAX, outside every frame, wraps: no beam.)
+            let beam = kernel.uses_beam() && x1 > x0 && y1 > y0;
+            let frustum = beam.then(|| camera.tile_frustum(x0, y0, x1, y1)).flatten();
+            let t_start = frustum.map_or(0.0, |f| scene.clear_distance(&f));
+            #[cfg(feature = "packets")]
+            let blocks = kernel.in_blocks() && beam && packets_pay(camera, t_start);
+            #[cfg(not(feature = "packets"))]
+            let blocks = false;
+            for (bx, by, lanes) in blocks_of(tile, blocks) {
+                let corner = (rect.x.wrapping_add(bx), rect.y.wrapping_add(by));
+                let block = Block {
+                    corner,
+                    lanes,
+                    t_start,
+                };
+                let mut samples = round.as_mut().map(|r| BlockSamples {
+                    round: r.n,
+                    cells: &mut r.samples[by as usize * stride + bx as usize..],
+                    stride,
+                });
+                kernel.block(
+                    scene,
+                    block,
+                    &mut memory,
+                    samples.as_mut(),
+                    |i, rgba, rays| {
+                        let (dx, dy) = lane_offset(i);
+                        put(bx + dx, by + dy, rgba);
+                        stats += rays;
+                    },
+                );
+            }
+            left |= K::RESUMES && round.as_ref().is_some_and(|r| !done(r.samples));
+        }
+    }
+    (stats, left)
+}
+
+/// The blocks of `tile` (offsets inside the rectangle), row-major, each
+/// as its corner and lanes: 8x4 blocks (one the tile's edge cuts has the
+/// mask of its lanes inside) when `in_blocks`, else lone pixels.
+fn blocks_of(tile: Rect, in_blocks: bool) -> impl Iterator<Item = (u32, u32, u32)> {
+    let (width, height) = if in_blocks {
+        (BLOCK_WIDTH, BLOCK_HEIGHT)
+    } else {
+        (1, 1)
+    };
+    // Offsets, which stay below the rectangle's size: no sum overflows.
+    let (dx1, dy1) = (tile.x + tile.width, tile.y + tile.height);
+    (tile.y..dy1).step_by(height as usize).flat_map(move |by| {
+        (tile.x..dx1).step_by(width as usize).map(move |bx| {
+            let (w, h) = ((dx1 - bx).min(width), (dy1 - by).min(height));
+            // `h` rows of `w` lanes each.
+            let row = u32::MAX >> (32 - w);
+            let lanes = (0..h).fold(0, |lanes, dy| lanes | row << (dy * BLOCK_WIDTH));
+            (bx, by, lanes)
+        })
+    })
+}
+
+/// Lane `i`'s offset from its block's corner.
+#[inline]
+fn lane_offset(i: usize) -> (u32, u32) {
+    (i as u32 % BLOCK_WIDTH, i as u32 / BLOCK_WIDTH)
+}
 
 /// The width of the tiles of `kernel`'s pixels: [`TILE`], or wider for a
 /// kernel whose rays go in packets.
@@ -40,156 +162,13 @@ fn tile_width(kernel: &impl Kernel) -> u32 {
     TILE
 }
 
-/// Renders every pixel of `rect` with `kernel`, tile by tile (row-major
-/// tiles; inside a tile, row-major pixels or, for a kernel that makes
-/// them 8x4 at a time, row-major blocks), handing `put(dx, dy, rgba)` each
-/// pixel at its offset inside `rect`. Allocates nothing.
-pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
-    kernel: &K,
-    scene: &S,
-    camera: &Camera,
-    rect: Rect,
-    mut put: impl FnMut(u32, u32, u32),
-) -> RayStats {
-    let mut stats = RayStats::default();
-    // One memory for the whole rectangle: a tile's first ray begins from
-    // the last ray of the tile before, its neighbour.
-    let mut memory = WalkMemory::new();
-    // Offsets inside the rectangle, so that no sum passes u32::MAX for a
-    // rectangle that reaches the last pixel of the largest frame.
-    for dy0 in (0..rect.height).step_by(TILE as usize) {
-        let dy1 = dy0 + TILE.min(rect.height - dy0);
-        let width = tile_width(kernel);
-        for dx0 in (0..rect.width).step_by(width as usize) {
-            let dx1 = dx0 + width.min(rect.width - dx0);
-            let (x0, y0) = (rect.x.wrapping_add(dx0), rect.y.wrapping_add(dy0));
-            let (x1, y1) = (rect.x.wrapping_add(dx1), rect.y.wrapping_add(dy1));
-            // (A tile past u32::MAX, outside every frame, wraps: no beam.)
-            let beam = kernel.uses_beam() && x1 > x0 && y1 > y0;
-            let frustum = beam.then(|| camera.tile_frustum(x0, y0, x1, y1)).flatten();
-            let t_start = frustum.map_or(0.0, |f| scene.clear_distance(&f));
-            let tile = Tile { dx0, dy0, dx1, dy1 };
-            #[cfg(feature = "packets")]
-            let offsets = Rect {
-                x: dx0,
-                y: dy0,
-                width: dx1 - dx0,
-                height: dy1 - dy0,
-            };
-            #[cfg(feature = "packets")]
-            if kernel.in_blocks() && beam && packets_pay(camera, t_start) {
-                let memory = &mut memory;
-                in_packets(
-                    kernel, scene, rect, offsets, t_start, memory, &mut put, &mut stats,
-                );
-                continue;
-            }
-            for (dx, dy) in tile.offsets() {
-                let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
-                let (rgba, rays) = kernel.pixel(scene, x, y, t_start, &mut memory);
-                put(dx, dy, rgba);
-                stats += rays;
-            }
-        }
-    }
-    stats
-}
-
-/// Continues every pixel of `rect` to the end of round `round` (from 1)
-/// with `kernel` ([`Resumable::resume`]), in the tiles of [`render_tiles`]:
-/// `pixels` holds each pixel's samples so far (row-major, stride
-/// `rect.width`), and `put(dx, dy, rgba)` hears each pixel that took
-/// samples. A tile whose pixels are all done is skipped whole. Returns
-/// the rays traced and whether a pixel is left that is not done.
-/// Allocates nothing.
-#[cfg(feature = "path")]
-pub(crate) fn resume_tiles<K: Resumable, S: Scene + ?Sized>(
-    kernel: &K,
-    scene: &S,
-    camera: &Camera,
-    rect: Rect,
-    pixels: &mut [PixelSamples],
-    round: u32,
-    mut put: impl FnMut(u32, u32, u32),
-) -> (RayStats, bool) {
-    let mut stats = RayStats::default();
-    let mut memory = WalkMemory::new();
-    let mut left = false;
-    let stride = rect.width as usize;
-    let index = |dx: u32, dy: u32| dy as usize * stride + dx as usize;
-    for tile in tiles_of(rect) {
-        let all_done = tile
-            .offsets()
-            .all(|(dx, dy)| pixels.get(index(dx, dy)).is_none_or(|p| p.done));
-        if all_done {
-            continue;
-        }
-        let t_start = clear_distance(kernel, scene, camera, rect, tile);
-        for (dx, dy) in tile.offsets() {
-            let Some(pixel) = pixels.get_mut(index(dx, dy)) else {
-                continue;
-            };
-            let (x, y) = (rect.x.wrapping_add(dx), rect.y.wrapping_add(dy));
-            let (rgba, rays) = kernel.resume(scene, x, y, t_start, &mut memory, pixel, round);
-            if let Some(rgba) = rgba {
-                put(dx, dy, rgba);
-            }
-            left |= !pixel.done;
-            stats += rays;
-        }
-    }
-    (stats, left)
-}
-
-/// One tile: its pixels' offsets inside the rectangle, `dx0..dx1` by
-/// `dy0..dy1`.
-#[derive(Clone, Copy)]
-struct Tile {
-    dx0: u32,
-    dy0: u32,
-    dx1: u32,
-    dy1: u32,
-}
-
-impl Tile {
-    /// The tile's pixel offsets, row-major.
-    fn offsets(self) -> impl Iterator<Item = (u32, u32)> {
-        (self.dy0..self.dy1).flat_map(move |dy| (self.dx0..self.dx1).map(move |dx| (dx, dy)))
-    }
-}
-
-/// The tiles of `rect`, row-major. Offsets inside the rectangle, so that
-/// no sum passes u32::MAX for a rectangle that reaches the last pixel of
-/// the largest frame.
-#[cfg(feature = "path")]
-fn tiles_of(rect: Rect) -> impl Iterator<Item = Tile> {
-    (0..rect.height)
-        .step_by(TILE as usize)
-        .flat_map(move |dy0| {
-            let dy1 = dy0 + TILE.min(rect.height - dy0);
-            (0..rect.width).step_by(TILE as usize).map(move |dx0| Tile {
-                dx0,
-                dy0,
-                dx1: dx0 + TILE.min(rect.width - dx0),
-                dy1,
-            })
-        })
-}
-
-/// The distance before which no primary ray of `tile` (of `rect`) hits
-/// anything, for a kernel that uses it; 0 otherwise.
-#[cfg(feature = "path")]
-fn clear_distance<K: Kernel, S: Scene + ?Sized>(
-    kernel: &K,
-    scene: &S,
-    camera: &Camera,
-    rect: Rect,
-    tile: Tile,
-) -> f32 {
-    let (x0, y0) = (rect.x.wrapping_add(tile.dx0), rect.y.wrapping_add(tile.dy0));
-    let (x1, y1) = (rect.x.wrapping_add(tile.dx1), rect.y.wrapping_add(tile.dy1));
-    // (A tile past u32::MAX, outside every frame, wraps: no beam.)
-    let beam = kernel.uses_beam() && x1 > x0 && y1 > y0;
-    let frustum = beam.then(|| camera.tile_frustum(x0, y0, x1, y1)).flatten();
-    frustum.map_or(0.0, |f| scene.clear_distance(&f))
+/// Whether a tile's rays, clear until `t_start`, are coherent enough for
+/// packets: an 8x4 block's rays are at most [`MAX_SPREAD`] voxels apart
+/// there, or clear forever (a tile of sky: its rays are made in blocks,
+/// and none is traced). Never for an orthographic camera, whose rays
+/// share no origin.
+#[cfg(feature = "packets")]
+fn packets_pay(camera: &Camera, t_start: f32) -> bool {
+    let spread = t_start * camera.pixel_spread() * BLOCK_WIDTH as f32;
+    !camera.is_orthographic() && (spread <= MAX_SPREAD || t_start == f32::INFINITY)
 }

@@ -1,9 +1,9 @@
 //! Build a storage from the seeded terrain, render a region of a frame.
 //!
 //! One thread count decides both steps: `Some(1)` runs the sequential build
-//! and the scalar `render_span` loop on the calling thread; anything else runs
-//! the parallel build and `render_parallel` on a rayon pool (see
-//! [`on_threads`]). Both give the same bytes.
+//! and the render into a buffer on the calling thread; anything else runs
+//! the parallel build and the render into the atomic framebuffer on a rayon
+//! pool (see [`on_threads`]). Both give the same bytes.
 
 use std::time::{Duration, Instant};
 
@@ -168,10 +168,10 @@ impl BuiltScene {
     }
 
     /// Renders `region` of `camera`'s frame of the storage shaded with
-    /// `materials` (a `.vox` file's; `None`: all diffuse): with the scalar
-    /// path on the calling thread unless `threaded`, else with
-    /// `render_parallel` on the current rayon pool. `progress` hears of
-    /// every finished row count.
+    /// `materials` (a `.vox` file's; `None`: all diffuse): into a buffer on
+    /// the calling thread unless `threaded`, else into the atomic
+    /// framebuffer on the current rayon pool. `progress` hears of every
+    /// finished band's row count.
     ///
     /// # Errors
     /// A one-line message if the region does not fit the frame or its pixels
@@ -197,7 +197,7 @@ impl BuiltScene {
     }
 
     /// [`BuiltScene::render_with`], the samples taken in rounds over the
-    /// whole region (`voxtrace::render_region_in_rounds`, threaded or
+    /// whole region (`voxtrace::render_in_rounds`, threaded or
     /// not): `keep_going(n)`, asked after round `n` while a pixel has
     /// samples left, says whether another round begins. `progress` hears
     /// of the rows of every round. Returns the rounds taken beside the

@@ -7,9 +7,8 @@ use std::collections::TryReserveError;
 use std::time::Instant;
 
 use voxtrace::{
-    render_parallel_in_rounds, render_parallel_with_progress, render_region,
-    render_region_in_rounds, Camera, Framebuffer, PixelSamples, RayStats, Rect, RenderOptions,
-    RoundsDone, Scene,
+    render, render_in_rounds, Camera, Framebuffer, PixelSamples, Rect, RenderOptions, RoundsDone,
+    Scene, Target,
 };
 
 use crate::pipeline::Rendered;
@@ -68,80 +67,51 @@ impl RenderJob<'_> {
         };
         region.validate(camera).map_err(|e| e.to_string())?;
         let area = region.area().map_err(|e| e.to_string())?;
-        // Zeroed on the render's own pool (this runs inside its `install`).
-        let new_frame =
-            || Framebuffer::new_parallel(region.width, region.height).map_err(|_| no_memory());
-        let new_pixels = || filled(area, 0u32).ok_or_else(no_memory);
-        match pass {
-            Pass::Once if threaded => {
-                let started = Instant::now();
-                let frame = new_frame()?;
-                let rays =
-                    render_parallel_with_progress(scene, camera, options, region, &frame, progress)
-                        .map_err(|e| e.to_string())?;
-                Ok((rendered(frame.into_pixels(), rays, started, None), None))
-            }
+        // On the pool into the atomic framebuffer, zeroed on the pool (this
+        // runs inside its `install`), or on this thread into plain pixels.
+        let started = Instant::now();
+        let mut frame = None;
+        let mut pixels = Vec::new();
+        let target = if threaded {
+            let fresh = Framebuffer::new_parallel(region.width, region.height);
+            Target::Framebuffer(frame.insert(fresh.map_err(|_| no_memory())?))
+        } else {
+            pixels = filled(area, 0u32).ok_or_else(no_memory)?;
+            Target::Buffer(&mut pixels)
+        };
+        let progress = Some(progress);
+        let (rays, done, radiance) = match pass {
             Pass::Once => {
-                // The scalar path, a band of rows at a time for the progress
-                // callback (sixteen rows: the tiles primary rays are traced in).
-                const BAND: u32 = 16;
-                let started = Instant::now();
-                let mut pixels = new_pixels()?;
-                let mut rays = RayStats::default();
-                let bands = pixels.chunks_mut(region.width as usize * BAND as usize);
-                for (y, band) in (region.y..).step_by(BAND as usize).zip(bands) {
-                    let rect = Rect {
-                        y,
-                        height: (band.len() / region.width as usize) as u32,
-                        ..region
-                    };
-                    rays += render_region(scene, camera, options, rect, band)
-                        .map_err(|e| e.to_string())?;
-                    progress(rect.height);
-                }
-                Ok((rendered(pixels, rays, started, None), None))
+                let rays = render(scene, camera, options, region, target, progress);
+                (rays.map_err(|e| e.to_string())?, None, None)
             }
             Pass::Rounds {
                 keep_going,
                 keep_radiance,
             } => {
                 let mut state = filled(area, PixelSamples::default()).ok_or_else(no_memory)?;
-                let (pixels, done, started) = if threaded {
-                    let started = Instant::now();
-                    let frame = new_frame()?;
-                    let done = render_parallel_in_rounds(
-                        scene, camera, options, region, &frame, &mut state, progress, keep_going,
-                    )
-                    .map_err(|e| e.to_string())?;
-                    (frame.into_pixels(), done, started)
-                } else {
-                    let started = Instant::now();
-                    let mut pixels = new_pixels()?;
-                    // The scalar path reports a round's rows when it ends.
-                    let keep_going = |n| {
-                        progress(region.height);
-                        keep_going(n)
-                    };
-                    let done = render_region_in_rounds(
-                        scene,
-                        camera,
-                        options,
-                        region,
-                        &mut pixels,
-                        &mut state,
-                        keep_going,
-                    )
-                    .map_err(|e| e.to_string())?;
-                    (pixels, done, started)
-                };
+                let done = render_in_rounds(
+                    scene, camera, options, region, target, &mut state, progress, keep_going,
+                )
+                .map_err(|e| e.to_string())?;
                 let radiance = if keep_radiance {
                     mean_radiance(&state).map_err(|_| no_memory())?
                 } else {
                     None
                 };
-                Ok((rendered(pixels, done.rays, started, radiance), Some(done)))
+                (done.rays, Some(done), radiance)
             }
+        };
+        if let Some(frame) = frame {
+            pixels = frame.into_pixels();
         }
+        let rendered = Rendered {
+            pixels,
+            rays,
+            elapsed: started.elapsed(),
+            radiance,
+        };
+        Ok((rendered, done))
     }
 }
 
@@ -161,21 +131,6 @@ pub fn mean_radiance(state: &[PixelSamples]) -> Result<Option<Vec<f32>>, TryRese
         radiance.extend_from_slice(&mean.to_array());
     }
     Ok(Some(radiance))
-}
-
-/// A [`Rendered`] whose render began at `started`.
-fn rendered(
-    pixels: Vec<u32>,
-    rays: RayStats,
-    started: Instant,
-    radiance: Option<Vec<f32>>,
-) -> Rendered {
-    Rendered {
-        pixels,
-        rays,
-        elapsed: started.elapsed(),
-        radiance,
-    }
 }
 
 /// `len` copies of `value`, or `None` where the memory is refused.

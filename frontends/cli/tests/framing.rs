@@ -9,8 +9,8 @@ use std::process::Command;
 
 use voxtrace::glam::{IVec3, U8Vec3};
 use voxtrace::{
-    render, Background, Camera, CameraSettings, FnSource, IAabb, OctreeScene, Palette,
-    RenderOptions,
+    render, Background, Camera, CameraSettings, FnSource, IAabb, OctreeScene, Palette, Rect,
+    RenderOptions, Target,
 };
 use voxtrace_cli::framing;
 
@@ -132,7 +132,15 @@ fn framed_boxes_are_in_view_and_clear_of_the_border() {
                 background: Background::Transparent,
                 ..RenderOptions::flat()
             };
-            render(&scene, &camera, &options, &mut pixels).unwrap();
+            render(
+                &scene,
+                &camera,
+                &options,
+                Rect::full(&camera),
+                Target::Buffer(&mut pixels),
+                None,
+            )
+            .unwrap();
             let rgba: Vec<u8> = pixels.iter().flat_map(|&p| voxtrace::unpack(p)).collect();
             let case = format!("{bounds:?} at {width}x{height}, fov {fov}");
             let (w, h) = (width as usize, height as usize);

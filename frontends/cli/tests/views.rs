@@ -9,7 +9,8 @@ use std::path::{Path, PathBuf};
 
 use common::run::{scratch_in, stderr, voxtrace};
 use voxtrace::{
-    render, unpack, Camera, CameraSettings, OctreeScene, RenderOptions, VoxModel, VoxelGenerator,
+    render, unpack, Camera, CameraSettings, OctreeScene, Rect, RenderOptions, Target, VoxModel,
+    VoxelGenerator,
 };
 use voxtrace_cli::{export_vox, terrain_box};
 
@@ -521,8 +522,24 @@ fn the_shipped_sample_is_the_export_and_renders_as_its_source() {
             for options in [RenderOptions::flat(), shaded] {
                 let mut a = vec![0; 80 * 60];
                 let mut b = vec![0; 80 * 60];
-                let sa = render(&direct, &camera, &options, &mut a).unwrap();
-                let sb = render(&loaded, &camera, &options, &mut b).unwrap();
+                let sa = render(
+                    &direct,
+                    &camera,
+                    &options,
+                    Rect::full(&camera),
+                    Target::Buffer(&mut a),
+                    None,
+                )
+                .unwrap();
+                let sb = render(
+                    &loaded,
+                    &camera,
+                    &options,
+                    Rect::full(&camera),
+                    Target::Buffer(&mut b),
+                    None,
+                )
+                .unwrap();
                 assert!(
                     a == b,
                     "size {size}, seed {seed}, from {lookfrom}: frames differ"

@@ -11,7 +11,7 @@
 use voxtrace::glam::Vec3;
 use voxtrace::{
     render, Camera, CameraSettings, DenseScene, Error, IAabb, Node, OctreeLen, OctreeScene,
-    RayStats, RenderOptions, VoxelGenerator,
+    RayStats, Rect, RenderOptions, Target, VoxelGenerator,
 };
 
 /// Scene extent: the volume is `[-16, 16)^3`, terrain clipped to it.
@@ -76,11 +76,25 @@ pub fn render_demo(
     match backend {
         Backend::Dense => {
             let scene = DenseScene::build_in(&terrain, BOUNDS, buffers.dense)?;
-            render(&scene, &camera, &options, frame)
+            render(
+                &scene,
+                &camera,
+                &options,
+                Rect::full(&camera),
+                Target::Buffer(frame),
+                None,
+            )
         }
         Backend::Octree => {
             let scene = OctreeScene::build_in(&terrain, BOUNDS, buffers.nodes, buffers.materials)?;
-            render(&scene, &camera, &options, frame)
+            render(
+                &scene,
+                &camera,
+                &options,
+                Rect::full(&camera),
+                Target::Buffer(frame),
+                None,
+            )
         }
     }
 }

@@ -1,7 +1,9 @@
 //! The bare-metal render logic, run on the host: its frame equals the
 //! desktop render of the same scene byte for byte, for both storages.
 
-use voxtrace::{render, DenseScene, Node, OctreeScene, RenderOptions, VoxelGenerator};
+use voxtrace::{
+    render, DenseScene, Node, OctreeScene, Rect, RenderOptions, Target, VoxelGenerator,
+};
 use voxtrace_embedded::{
     camera, render_demo, Backend, Buffers, BOUNDS, DENSE_LEN, OCTREE_LEN, PIXELS, SEED,
 };
@@ -35,7 +37,9 @@ fn the_embedded_frame_is_the_desktop_frame() {
         &scene,
         &camera().unwrap(),
         &RenderOptions::default(),
-        &mut desktop,
+        Rect::full(&camera().unwrap()),
+        Target::Buffer(&mut desktop),
+        None,
     )
     .unwrap();
     let dense = DenseScene::build(&terrain, BOUNDS).unwrap();
@@ -44,7 +48,9 @@ fn the_embedded_frame_is_the_desktop_frame() {
         &dense,
         &camera().unwrap(),
         &RenderOptions::default(),
-        &mut desktop_dense,
+        Rect::full(&camera().unwrap()),
+        Target::Buffer(&mut desktop_dense),
+        None,
     )
     .unwrap();
     assert!(desktop == desktop_dense);

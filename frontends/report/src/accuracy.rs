@@ -12,8 +12,8 @@ use std::fmt::Write as _;
 
 use voxtrace::glam::Vec3;
 use voxtrace::{
-    render_parallel, Camera, CameraSettings, Framebuffer, IAabb, Occlusion, OctreeScene, RayStats,
-    Rect, RenderOptions, VoxelGenerator,
+    render, Camera, CameraSettings, Framebuffer, IAabb, Occlusion, OctreeScene, RayStats, Rect,
+    RenderOptions, Target, VoxelGenerator,
 };
 use voxtrace_cli::on_threads;
 
@@ -198,8 +198,15 @@ pub fn run(args: &AccuracyArgs) -> Result<(), String> {
         let threads = voxtrace::rayon::current_num_threads();
         let render = |options: &RenderOptions| -> Result<(std::time::Duration, RayStats), String> {
             let started = std::time::Instant::now();
-            let rays = render_parallel(&scene, &camera, options, Rect::full(&camera), &frame)
-                .map_err(|e| e.to_string())?;
+            let rays = render(
+                &scene,
+                &camera,
+                options,
+                Rect::full(&camera),
+                Target::Framebuffer(&frame),
+                None,
+            )
+            .map_err(|e| e.to_string())?;
             Ok((started.elapsed(), rays))
         };
         let (samples, ao, shadows) = REFERENCE;

@@ -11,9 +11,9 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use voxtrace::{render_parallel, Adaptive, Framebuffer, Rect, RenderOptions};
 #[cfg(feature = "denoise")]
-use voxtrace::{render_parallel_in_rounds, PixelSamples};
+use voxtrace::PixelSamples;
+use voxtrace::{render, Adaptive, Framebuffer, Rect, RenderOptions, Target};
 
 use crate::measure::{count_of, format_ms, median_ms};
 use crate::path_accuracy::{self, PathScene};
@@ -147,8 +147,15 @@ fn measure(
     let camera = scene.camera;
     let render = |options: &RenderOptions| -> Result<(Duration, u64), String> {
         let started = Instant::now();
-        let rays = render_parallel(scene.scene, camera, options, Rect::full(camera), &frame)
-            .map_err(|e| e.to_string())?;
+        let rays = render(
+            scene.scene,
+            camera,
+            options,
+            Rect::full(camera),
+            Target::Framebuffer(&frame),
+            None,
+        )
+        .map_err(|e| e.to_string())?;
         Ok((started.elapsed(), rays.primary_rays))
     };
     eprintln!(
@@ -170,14 +177,14 @@ fn measure(
             let started = Instant::now();
             let region = Rect::full(camera);
             let mut state = vec![PixelSamples::default(); (width * height) as usize];
-            let done = render_parallel_in_rounds(
+            let done = render_in_rounds(
                 scene.scene,
                 camera,
                 &options,
                 region,
-                &frame,
+                Target::Framebuffer(&frame),
                 &mut state,
-                &|_| {},
+                Some(&|_| {}),
                 |_| true,
             )
             .map_err(|e| e.to_string())?;

@@ -12,8 +12,8 @@ use std::time::Instant;
 
 use plotters::chart::SeriesLabelPosition;
 use voxtrace::{
-    render_parallel, Bounces, Camera, CameraSettings, Framebuffer, IAabb, Lighting, OctreeScene,
-    Orbit, RayStats, Rect, RenderOptions, Scene, VoxModel, WithMaterials,
+    render, Bounces, Camera, CameraSettings, Framebuffer, IAabb, Lighting, OctreeScene, Orbit,
+    RayStats, Rect, RenderOptions, Scene, Target, VoxModel, WithMaterials,
 };
 use voxtrace_cli::room;
 use voxtrace_flags::{fit, Boxes};
@@ -97,9 +97,16 @@ fn measure<S: Scene + Sync + ?Sized>(
     };
     let render = |options: &RenderOptions| {
         let started = Instant::now();
-        render_parallel(scene, camera, options, Rect::full(camera), &frame)
-            .map(|rays| (started.elapsed(), rays))
-            .map_err(|e| e.to_string())
+        render(
+            scene,
+            camera,
+            options,
+            Rect::full(camera),
+            Target::Framebuffer(&frame),
+            None,
+        )
+        .map(|rays| (started.elapsed(), rays))
+        .map_err(|e| e.to_string())
     };
     let most = grid.bounces.iter().copied().max().unwrap_or(1);
     eprintln!(

@@ -44,7 +44,7 @@ pub(crate) fn tables(
         md,
         "Measured by `{command}` on {} with {threads_text}: seed {seed}, \
          median of {runs_text} after a warm-up, the CLI's build and render path \
-         (parallel build, `render_parallel`, frame allocation included).\n",
+         (parallel build, the threaded `render`, frame allocation included).\n",
         cpu_name()
     );
     for view in [View::Paper, View::Above] {

@@ -35,8 +35,8 @@ pub mod options;
 use std::sync::Mutex;
 
 use voxtrace::{
-    render, Camera, DenseScene, IAabb, Node, OctreeScene, Orbit, RenderOptions, Scene, VoxModel,
-    VoxelGenerator, WithMaterials, MAX_COORD,
+    render, Camera, DenseScene, IAabb, Node, OctreeScene, Orbit, Rect, RenderOptions, Scene,
+    Target, VoxModel, VoxelGenerator, WithMaterials, MAX_COORD,
 };
 
 use voxtrace::glam::Vec3;
@@ -320,7 +320,7 @@ fn build(subject: &Subject, backend: u32) -> Result<Built, ErrorCode> {
 
 /// Renders `scene` with the model's materials when there is a model (as
 /// the CLI does), into `frame`; whether it rendered.
-fn draw<S: Scene>(
+fn draw<S: Scene + Sync>(
     scene: &S,
     model: Option<&VoxModel>,
     camera: &Camera,
@@ -330,9 +330,25 @@ fn draw<S: Scene>(
     match model {
         Some(m) => {
             let scene = WithMaterials::new(scene, m.materials(), m.emitters());
-            render(&scene, camera, options, frame).is_ok()
+            render(
+                &scene,
+                camera,
+                options,
+                Rect::full(camera),
+                Target::Buffer(frame),
+                None,
+            )
+            .is_ok()
         }
-        None => render(scene, camera, options, frame).is_ok(),
+        None => render(
+            scene,
+            camera,
+            options,
+            Rect::full(camera),
+            Target::Buffer(frame),
+            None,
+        )
+        .is_ok(),
     }
 }
 

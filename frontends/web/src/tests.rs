@@ -67,10 +67,18 @@ fn parse_camera(flags: &str) -> CameraSettings {
 }
 
 /// The library's render of `scene` through the camera of `flags`.
-fn library<S: Scene>(scene: &S, flags: &str, options: &RenderOptions) -> Vec<u32> {
+fn library<S: Scene + Sync>(scene: &S, flags: &str, options: &RenderOptions) -> Vec<u32> {
     let camera = Camera::new(parse_camera(flags)).unwrap();
     let mut pixels = vec![0; (W * H) as usize];
-    render(scene, &camera, options, &mut pixels).unwrap();
+    render(
+        scene,
+        &camera,
+        options,
+        Rect::full(&camera),
+        Target::Buffer(&mut pixels),
+        None,
+    )
+    .unwrap();
     pixels
 }
 
@@ -89,7 +97,15 @@ fn a_positioned_terrain_frame_is_the_library_render() {
     })
     .unwrap();
     let mut expected = vec![0; (W * H) as usize];
-    render(&scene, &camera, &RenderOptions::default(), &mut expected).unwrap();
+    render(
+        &scene,
+        &camera,
+        &RenderOptions::default(),
+        Rect::full(&camera),
+        Target::Buffer(&mut expected),
+        None,
+    )
+    .unwrap();
     assert!(pixels == expected, "octree");
     assert_eq!(vt_frame_len(), W * H);
     assert!(
@@ -182,7 +198,15 @@ fn a_model_opens_on_the_clis_measured_default_view_and_a_drag_starts_there() {
     let scene = WithMaterials::new(&octree, model.materials(), model.emitters());
     let mut expected = vec![0; (W * H) as usize];
     let options = options::render_options(0, 0, model.bounds(), Some(&model), 1.0);
-    render(&scene, &Camera::new(want).unwrap(), &options, &mut expected).unwrap();
+    render(
+        &scene,
+        &Camera::new(want).unwrap(),
+        &options,
+        Rect::full(&Camera::new(want).unwrap()),
+        Target::Buffer(&mut expected),
+        None,
+    )
+    .unwrap();
     assert!(pixels == expected, "{}", message());
     assert!(message().ends_with("--fov 30"), "{}", message());
     assert_eq!((vt_orbit_yaw(), vt_orbit_pitch()), (orbit.yaw, orbit.pitch));

@@ -1,7 +1,8 @@
 //! A path-traced pixel: its camera samples taken in order, each averaged
-//! in as it comes, in one pass or resumed round by round from the
-//! [`PixelSamples`] the caller keeps. Both run the same steps on the same
-//! numbers, so a pixel finished in rounds is the pixel of one pass.
+//! in as it comes, resumed round by round from the [`PixelSamples`] the
+//! caller keeps; one pass is one round to the last sample. Both run the
+//! same steps on the same numbers, so a pixel finished in rounds is the
+//! pixel of one pass.
 
 use glam::Vec3;
 
@@ -15,31 +16,17 @@ use crate::scene::{Scene, WalkMemory};
 use super::{Path, Rng, MAX_RADIANCE};
 
 impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS, METAL, EMIT> {
-    /// Pixel `(x, y)`: the mean radiance of its samples, and the rays
-    /// traced (the kernel's `pixel`). With adaptive sampling the pixel
-    /// takes the samples `0, 1, ...` of the uniform sequence until its own
-    /// tally says it is done, so it is the uniform render's pixel when that
-    /// takes as many samples. Its camera rays walk with `memory`,
-    /// shared with the neighbouring pixels' camera rays; each later ray of
-    /// a path begins from the hit before it (where a walk begins, never
-    /// what it hits).
-    pub(crate) fn trace_pixel<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        x: u32,
-        y: u32,
-        t_start: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> (u32, RayStats) {
-        let mut pixel = PixelSamples::default();
-        let stats = self.take_samples(scene, (x, y), t_start, memory, &mut pixel, u32::MAX);
-        (self.packed(&pixel), stats)
-    }
-
     /// Pixel `(x, y)` continued from `pixel` to the end of round `round`
-    /// (from 1): its packed color, `None` when it was already done, and
-    /// the rays traced. After round `n` the pixel is the one-pass pixel of
-    /// at most `n` rounds' samples ([`crate::render::rounds::Rounds`]).
+    /// (from 1; `u32::MAX` for every sample, one pass): its packed color
+    /// and the rays traced, `None` when it was already done. After round
+    /// `n` the pixel is the one-pass pixel of at most `n` rounds' samples
+    /// ([`crate::render::rounds::Rounds`]). With adaptive sampling the
+    /// pixel takes the samples `0, 1, ...` of the uniform sequence until
+    /// its own tally says it is done, so it is the uniform render's pixel
+    /// when that takes as many samples. Its camera rays walk with
+    /// `memory`, shared with the neighbouring pixels' camera rays; each
+    /// later ray of a path begins from the hit before it (where a walk
+    /// begins, never what it hits).
     pub(crate) fn resume_pixel<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
@@ -48,15 +35,15 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
         memory: &mut WalkMemory<'s>,
         pixel: &mut PixelSamples,
         round: u32,
-    ) -> (Option<u32>, RayStats) {
+    ) -> Option<(u32, RayStats)> {
         if pixel.done {
-            return (None, RayStats::default());
+            return None;
         }
         let setup = self.setup;
         let per_round = samples_per_round(setup.adaptive.as_ref(), setup.samples);
         let until = u32::from(per_round).saturating_mul(round.max(1));
         let stats = self.take_samples(scene, (x, y), t_start, memory, pixel, until);
-        (Some(self.packed(pixel)), stats)
+        Some((self.packed(pixel), stats))
     }
 
     /// The samples the pixel has total: the adaptive maximum or the fixed
@@ -71,9 +58,8 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
     /// Takes the pixel's next samples, in order, until it has `until` of
     /// them or is done (all its samples, or the adaptive rule says so),
     /// counting each into `pixel`; returns the rays traced. Not inlined:
-    /// the one-pass and the round-by-round pixel share one copy of the
-    /// sampling loop per kernel and storage (a call per pixel, against a
-    /// path per sample).
+    /// one copy of the sampling loop per kernel and storage (a call per
+    /// pixel, against a path per sample).
     #[inline(never)]
     fn take_samples<'s, S: Scene + ?Sized>(
         &self,

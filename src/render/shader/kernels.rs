@@ -9,6 +9,7 @@
 
 use glam::U8Vec3;
 
+use crate::render::camera::block_pixel;
 use crate::render::debug_view::{box_color, enters_near_edge};
 #[cfg(feature = "path")]
 use crate::render::path::{Path, PathSetup};
@@ -18,15 +19,13 @@ use crate::render::rounds::PixelSamples;
 use crate::render::shade::{pack, sky, FLAT_SKY};
 use crate::render::shader::lit::Lit;
 use crate::render::shader::{each_lane, lane_rays, trace_rays, LANES};
-use crate::render::shader::{FrameJob, Kernel, Shader};
-#[cfg(feature = "path")]
-use crate::render::shader::{Resumable, RoundsJob};
+use crate::render::shader::{Block, BlockSamples, Job, Kernel, Shader};
 use crate::render::stats::RayStats;
 use crate::scene::{Hit, Reach, Scene, WalkMemory};
 
 impl<'m> Shader<'_, 'm> {
     /// Runs `job` with the kernel compiled for this frame's effects.
-    pub(crate) fn dispatch<J: FrameJob>(&self, job: J) -> J::Output {
+    pub(crate) fn dispatch<J: Job>(&self, job: J) -> J::Output {
         let o = &self.options;
         if o.flat {
             return job.run(&Flat(self));
@@ -74,27 +73,10 @@ impl<'m> Shader<'_, 'm> {
         )
     }
 
-    /// Runs `job` with the path tracer when the frame is path-traced;
-    /// hands the job back
-    /// otherwise (a face-shaded frame is one pass: its caller renders it
-    /// as usual, and no round code is compiled for its kernels). One
-    /// kernel with every material kind on serves every scene (the kinds
-    /// a scene lacks never match: the same pixels), so the round code is
-    /// compiled once, not once per set of kinds (a megabyte of the CLI's
-    /// binary, for a mode a user opts into).
-    #[cfg(feature = "path")]
-    pub(crate) fn dispatch_rounds<J: RoundsJob>(&self, job: J) -> Result<J::Output, J> {
-        if let Some(setup) = &self.path {
-            let camera = self.camera;
-            return Ok(job.run(&Path::<true, true, true> { camera, setup }));
-        }
-        Err(job)
-    }
-
     /// Runs `job` with the path tracer compiled for the material kinds
     /// the scene holds.
     #[cfg(feature = "path")]
-    fn dispatch_path<J: FrameJob>(&self, setup: &PathSetup<'m>, job: J) -> J::Output {
+    fn dispatch_path<J: Job>(&self, setup: &PathSetup<'m>, job: J) -> J::Output {
         let camera = self.camera;
         if !cfg!(feature = "effect-kernels") {
             // The kinds a scene lacks never match: the same pixels.
@@ -125,35 +107,33 @@ impl<'m> Shader<'_, 'm> {
 impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Kernel
     for Path<'_, '_, GLASS, METAL, EMIT>
 {
-    #[inline]
-    fn pixel<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        x: u32,
-        y: u32,
-        t_start: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> (u32, RayStats) {
-        self.trace_pixel(scene, x, y, t_start, memory)
-    }
-}
+    const RESUMES: bool = true;
 
-#[cfg(feature = "path")]
-impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Resumable
-    for Path<'_, '_, GLASS, METAL, EMIT>
-{
+    /// Each lane's samples in order ([`Path::take_samples`]): all of
+    /// them in one pass, else from the lane's samples so far to the end
+    /// of the round.
     #[inline]
-    fn resume<'s, S: Scene + ?Sized>(
+    fn block<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
-        x: u32,
-        y: u32,
-        t_start: f32,
+        block: Block,
         memory: &mut WalkMemory<'s>,
-        pixel: &mut PixelSamples,
-        round: u32,
-    ) -> (Option<u32>, RayStats) {
-        self.resume_pixel(scene, (x, y), t_start, memory, pixel, round)
+        mut samples: Option<&mut BlockSamples<'_>>,
+        mut put: impl FnMut(usize, u32, RayStats),
+    ) {
+        for i in each_lane(block.lanes) {
+            let pixel = block_pixel(block.corner, i);
+            let mut fresh = PixelSamples::default();
+            let (round, state) = match samples.as_deref_mut() {
+                Some(kept) => (kept.round, kept.lane(i)),
+                None => (u32::MAX, &mut fresh),
+            };
+            if let Some((rgba, rays)) =
+                self.resume_pixel(scene, pixel, block.t_start, memory, state, round)
+            {
+                put(i, rgba, rays);
+            }
+        }
     }
 }
 
@@ -161,20 +141,6 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Resumable
 pub(super) struct Flat<'s, 'c, 'm>(pub(super) &'s Shader<'c, 'm>);
 
 impl Kernel for Flat<'_, '_, '_> {
-    #[inline]
-    fn pixel<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        x: u32,
-        y: u32,
-        t_start: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> (u32, RayStats) {
-        // (Too cheap a pixel to fill a block's arrays for.)
-        let (ray, reach) = (self.0.camera.get_ray(x, y), Reach::after(t_start));
-        self.color(scene.trace_with(&ray, reach, memory, None).hit)
-    }
-
     #[cfg(feature = "packets")]
     fn in_blocks(&self) -> bool {
         true
@@ -186,14 +152,27 @@ impl Kernel for Flat<'_, '_, '_> {
     fn block<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
-        corner: (u32, u32),
-        lanes: u32,
-        t_start: f32,
+        Block {
+            corner,
+            lanes,
+            t_start,
+        }: Block,
         memory: &mut WalkMemory<'s>,
+        _: Option<&mut BlockSamples<'_>>,
         mut put: impl FnMut(usize, u32, RayStats),
     ) {
+        let reach = Reach::after(t_start);
+        if lanes.is_power_of_two() {
+            // (Too cheap a pixel to fill a block's arrays for.)
+            let i = lanes.trailing_zeros() as usize;
+            let (x, y) = block_pixel(corner, i);
+            let ray = self.0.camera.get_ray(x, y);
+            let (rgba, rays) = self.color(scene.trace_with(&ray, reach, memory, None).hit);
+            put(i, rgba, rays);
+            return;
+        }
         let rays = lane_rays(self.0.camera, corner, lanes, None);
-        let (reach, mut hits) = (Reach::after(t_start), [None; LANES]);
+        let mut hits = [None; LANES];
         trace_rays(scene, &rays, lanes, reach, memory, &mut hits);
         for i in each_lane(lanes) {
             let (rgba, rays) = self.color(hits[i]);
@@ -215,29 +194,34 @@ impl Flat<'_, '_, '_> {
 pub(super) struct DebugView<'s, 'c, 'm>(pub(super) &'s Shader<'c, 'm>);
 
 impl Kernel for DebugView<'_, '_, '_> {
-    fn pixel<'s, S: Scene + ?Sized>(
+    /// Each lane's camera ray walked from the camera, stopped at the
+    /// first box it enters near an edge.
+    fn block<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
-        x: u32,
-        y: u32,
-        _: f32,
+        block: Block,
         _: &mut WalkMemory<'s>,
-    ) -> (u32, RayStats) {
-        let ray = self.0.camera.get_ray(x, y);
-        let mut edge = None;
-        let traced = scene.trace_visiting(&ray, &mut |cube| {
-            if enters_near_edge(&ray, cube, self.0.edge.0, self.0.edge.1) {
-                edge = Some(box_color(cube));
-            }
-            edge.is_none()
-        });
-        let rgba = match (edge, traced.hit) {
-            (Some(color), _) => pack(color),
-            (None, Some(_)) => pack(U8Vec3::ZERO),
-            (None, None) => self.0.miss(sky(ray.dir())),
-        };
-        // A ray stopped at an edge still counts as one primary ray.
-        (rgba, primary(traced.hit.as_ref()))
+        _: Option<&mut BlockSamples<'_>>,
+        mut put: impl FnMut(usize, u32, RayStats),
+    ) {
+        for i in each_lane(block.lanes) {
+            let (x, y) = block_pixel(block.corner, i);
+            let ray = self.0.camera.get_ray(x, y);
+            let mut edge = None;
+            let traced = scene.trace_visiting(&ray, &mut |cube| {
+                if enters_near_edge(&ray, cube, self.0.edge.0, self.0.edge.1) {
+                    edge = Some(box_color(cube));
+                }
+                edge.is_none()
+            });
+            let rgba = match (edge, traced.hit) {
+                (Some(color), _) => pack(color),
+                (None, Some(_)) => pack(U8Vec3::ZERO),
+                (None, None) => self.0.miss(sky(ray.dir())),
+            };
+            // A ray stopped at an edge still counts as one primary ray.
+            put(i, rgba, primary(traced.hit.as_ref()));
+        }
     }
 
     fn uses_beam(&self) -> bool {

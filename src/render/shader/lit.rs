@@ -15,7 +15,9 @@ use crate::render::options::Background;
 use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{face_index, fog_blend, lit, pack, pack_mean, sky};
-use crate::render::shader::{each_lane, lane_rays, trace_rays, Kernel, Shader, LANES};
+use crate::render::shader::{
+    each_lane, lane_rays, trace_rays, Block, BlockSamples, Kernel, Shader, LANES,
+};
 use crate::render::stats::RayStats;
 use crate::scene::{Hit, Reach, Scene, WalkMemory};
 
@@ -47,23 +49,6 @@ pub(super) struct Lit<
 impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const EXACT: bool> Kernel
     for Lit<'_, '_, '_, SHADOWS, AO, FOG, AA, EXACT>
 {
-    #[inline]
-    fn pixel<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        x: u32,
-        y: u32,
-        t_start: f32,
-        memory: &mut WalkMemory<'s>,
-    ) -> (u32, RayStats) {
-        // Lane 0 of the block from the pixel, alone.
-        let mut pixel = (0, RayStats::default());
-        self.block(scene, (x, y), 1, t_start, memory, |_, rgba, rays| {
-            pixel = (rgba, rays)
-        });
-        pixel
-    }
-
     #[cfg(feature = "packets")]
     fn in_blocks(&self) -> bool {
         true
@@ -77,10 +62,13 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
     fn block<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
-        corner: (u32, u32),
-        lanes: u32,
-        t_start: f32,
+        Block {
+            corner,
+            lanes,
+            t_start,
+        }: Block,
         memory: &mut WalkMemory<'s>,
+        _: Option<&mut BlockSamples<'_>>,
         mut put: impl FnMut(usize, u32, RayStats),
     ) {
         let (one_ray, reach) = (self.one_ray(), Reach::after(t_start));

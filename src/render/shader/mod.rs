@@ -4,8 +4,9 @@
 //! [`Shader::dispatch`] matches on the effect set once and hands a job a
 //! kernel type whose effect switches are `const` generics, so the per-pixel
 //! code of a frame without shadows contains no shadow test at all (and so
-//! on for every effect). Every renderer (pixel, span, region, threaded) is a
-//! job, so they all compute pixels with the same code. This file holds
+//! on for every effect). Every render is one job (`render/frame.rs`), so
+//! every target, crop and pass computes pixels with the same code. This
+//! file holds
 //! what a frame's pixels need, the traits of jobs and kernels, and what
 //! the kernels that make pixels 8x4 at a time share (a block's lanes,
 //! its camera rays, their tracing); the kernels and the dispatch are in
@@ -31,13 +32,12 @@ use crate::geom::Ray;
 #[cfg(feature = "path")]
 use crate::material::Materials;
 use crate::material::SceneMaterials;
-use crate::render::camera::{block_pixel, Camera};
+use crate::render::camera::{block_pixel, Camera, BLOCK_WIDTH};
 use crate::render::options::{Background, RenderOptions};
 #[cfg(feature = "path")]
 use crate::render::path::PathSetup;
 #[cfg(feature = "path")]
 use crate::render::plan::{EffectPlan, Look};
-#[cfg(feature = "path")]
 use crate::render::rounds::PixelSamples;
 #[cfg(feature = "packets")]
 use crate::render::sampling::sample_offset;
@@ -130,66 +130,80 @@ impl<'c, 'm> Shader<'c, 'm> {
     }
 }
 
-/// Something done to a frame's pixels with one kernel: a pixel, a span, a
-/// region, a threaded frame.
-pub(crate) trait FrameJob {
+/// Something done to a frame's pixels with one kernel: every render is
+/// one (`render/frame.rs`).
+pub(crate) trait Job {
     /// What the job returns.
     type Output;
     /// Does the job with `kernel`, which computes each pixel.
     fn run<K: Kernel>(self, kernel: &K) -> Self::Output;
 }
 
+/// The pixels a kernel makes in one call: the lanes set in `lanes` of
+/// the 8x4 block from `corner` (lane `i` at [`block_pixel`]`(corner, i)`;
+/// a lone pixel is lane 0 alone). Their camera rays hit nothing before
+/// `t_start` (0 when unknown), so they may start walking there.
+#[derive(Clone, Copy)]
+pub(crate) struct Block {
+    pub(crate) corner: (u32, u32),
+    pub(crate) lanes: u32,
+    pub(crate) t_start: f32,
+}
+
+/// The samples a block's pixels keep between rounds of a render in
+/// rounds, and the round to take them to: lane `i`'s at
+/// `cells[(i / 8) * stride + i % 8]` (the block's rows in the caller's
+/// row-major state). Only the path tracer reads them.
+#[cfg_attr(not(feature = "path"), allow(dead_code))]
+pub(crate) struct BlockSamples<'a> {
+    pub(crate) round: u32,
+    pub(crate) cells: &'a mut [PixelSamples],
+    pub(crate) stride: usize,
+}
+
+#[cfg_attr(not(feature = "path"), allow(dead_code))]
+impl BlockSamples<'_> {
+    /// Lane `i`'s samples so far.
+    #[inline]
+    pub(crate) fn lane(&mut self, i: usize) -> &mut PixelSamples {
+        let (dx, dy) = (i % BLOCK_WIDTH as usize, i / BLOCK_WIDTH as usize);
+        &mut self.cells[dy * self.stride + dx]
+    }
+}
+
 /// Computes pixels with one fixed set of effects.
 pub(crate) trait Kernel: Sync {
-    /// Pixel `(x, y)` of the frame: packed color and the rays it traced.
-    /// Its primary rays hit nothing before `t_start` (0 when unknown), so
-    /// they may start walking there; its walks may begin from what the
-    /// previous pixel's left in `memory`. The pixel is the same for any
-    /// such `t_start` and any memory.
-    fn pixel<'s, S: Scene + ?Sized>(
+    /// The pixels of `block`, handed to `put(i, rgba, rays)`, lowest lane
+    /// first. Its walks may begin from what the previous block's left in
+    /// `memory`; a pixel is the same for any `t_start` it is given and
+    /// any memory. `samples` is `None` in one pass (each pixel takes all
+    /// its samples); in a render in rounds, which only the path tracer
+    /// takes ([`Kernel::RESUMES`]), it holds each lane's samples so far,
+    /// and a lane that is done is not handed out.
+    fn block<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
-        x: u32,
-        y: u32,
-        t_start: f32,
+        block: Block,
         memory: &mut WalkMemory<'s>,
-    ) -> (u32, RayStats);
+        samples: Option<&mut BlockSamples<'_>>,
+        put: impl FnMut(usize, u32, RayStats),
+    );
 
-    /// Whether the kernel's primary rays use a tile's clear distance (the
+    /// Whether the kernel's pixels take their samples in rounds (the
+    /// path tracer); the face-shaded looks' take theirs in one pass.
+    const RESUMES: bool = false;
+
+    /// Whether the kernel's camera rays use a tile's clear distance (the
     /// debug view walks from the camera to show every box).
     fn uses_beam(&self) -> bool {
         true
     }
 
-    /// Whether the kernel makes its pixels 8x4 at a time
-    /// ([`Kernel::block`]): then tiles trace their camera rays in packets.
+    /// Whether the kernel traces a block's camera rays together: then
+    /// tiles hand it 8x4 blocks where packets pay, else lone pixels.
     #[cfg(feature = "packets")]
     fn in_blocks(&self) -> bool {
         false
-    }
-
-    /// The pixels of the lanes set in `lanes` of the 8x4 block from
-    /// `corner` (lane `i` at [`block_pixel`]`(corner, i)`), handed to
-    /// `put(i, rgba, rays)`, lowest lane first: the pixels and rays
-    /// [`Kernel::pixel`] gives, with the same `t_start` and `memory`
-    /// rules. A kernel that makes blocks traces their lanes together
-    /// ([`trace_rays`]); the default makes each lane's pixel alone.
-    /// Without the feature `packets`, `lanes` is lane 0 alone ([`LANES`]).
-    #[inline]
-    fn block<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        corner: (u32, u32),
-        lanes: u32,
-        t_start: f32,
-        memory: &mut WalkMemory<'s>,
-        mut put: impl FnMut(usize, u32, RayStats),
-    ) {
-        for i in each_lane(lanes) {
-            let (x, y) = block_pixel(corner, i);
-            let (rgba, rays) = self.pixel(scene, x, y, t_start, memory);
-            put(i, rgba, rays);
-        }
     }
 }
 
@@ -251,40 +265,6 @@ fn trace_rays<'s, S: Scene + ?Sized>(
     for i in each_lane(lanes) {
         hits[i] = scene.trace_with(&rays[i], reach, memory, None).hit;
     }
-}
-
-/// A kernel whose pixels take their samples in rounds: the path tracer.
-/// (The face-shaded looks take theirs in one pass: a frame of them is
-/// one round, rendered as usual.)
-#[cfg(feature = "path")]
-pub(crate) trait Resumable: Kernel {
-    /// Pixel `(x, y)` continued from `pixel` to the end of round `round`
-    /// (from 1) of a render in rounds: its packed color, `None` when it
-    /// was already done (nothing traced), and the rays traced; after
-    /// round `n` it is the one-pass pixel of at most
-    /// [`crate::render::rounds::Rounds`]' samples after `n` rounds. The
-    /// same `t_start` and `memory` rules as [`Kernel::pixel`].
-    #[allow(clippy::too_many_arguments)]
-    fn resume<'s, S: Scene + ?Sized>(
-        &self,
-        scene: &'s S,
-        x: u32,
-        y: u32,
-        t_start: f32,
-        memory: &mut WalkMemory<'s>,
-        pixel: &mut PixelSamples,
-        round: u32,
-    ) -> (Option<u32>, RayStats);
-}
-
-/// Something done to a frame's pixels in rounds, with a kernel that
-/// resumes them.
-#[cfg(feature = "path")]
-pub(crate) trait RoundsJob {
-    /// What the job returns.
-    type Output;
-    /// Does the job with `kernel`.
-    fn run<K: Resumable>(self, kernel: &K) -> Self::Output;
 }
 
 impl Shader<'_, '_> {

@@ -14,7 +14,7 @@ use crate::material::{Material, Materials};
 use crate::render::camera::{Camera, CameraSettings};
 use crate::render::options::{Background, Fog, Lighting, Occlusion, RenderOptions};
 use crate::render::shader::lit::Lit;
-use crate::render::shader::{FrameJob, Kernel, Shader};
+use crate::render::shader::{Job, Kernel, Shader};
 use crate::render::stats::{RayStats, Rect};
 use crate::render::tiles::render_tiles;
 use crate::scene::Scene;
@@ -30,13 +30,13 @@ struct Frame<'a, S: ?Sized> {
     camera: &'a Camera,
 }
 
-impl<S: Scene + ?Sized> FrameJob for Frame<'_, S> {
+impl<S: Scene + ?Sized> Job for Frame<'_, S> {
     type Output = (Vec<u32>, RayStats);
     fn run<K: Kernel>(self, kernel: &K) -> (Vec<u32>, RayStats) {
         let width = self.camera.width();
         let mut pixels = vec![0; (width * self.camera.height()) as usize];
         let rect = Rect::full(self.camera);
-        let stats = render_tiles(kernel, self.scene, self.camera, rect, |x, y, rgba| {
+        let (stats, _) = render_tiles(kernel, self.scene, self.camera, rect, None, |x, y, rgba| {
             pixels[(y * width + x) as usize] = rgba;
         });
         (pixels, stats)

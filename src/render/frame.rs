@@ -1,0 +1,321 @@
+//! The one render path. A render is a region of a camera's frame, into a
+//! [`Target`] (a caller's buffer on this thread, or the atomic
+//! framebuffer on the rayon pool), in one pass ([`render`]) or in rounds
+//! ([`render_in_rounds`]); both are one job ([`FrameJob`]) run with the
+//! kernel compiled for the frame's effects, which cuts the region into
+//! bands of rows and each band into tiles (`tiles.rs`). One pass is one
+//! round that takes every sample, so the two cannot disagree, and since no
+//! pixel depends on its band, tile or thread, every target, crop and
+//! thread count gives the same bytes.
+
+#[cfg(feature = "rayon")]
+use rayon::iter::{IndexedParallelIterator, IntoParallelIterator, ParallelIterator};
+#[cfg(feature = "rayon")]
+use rayon::slice::ParallelSliceMut;
+
+use crate::error::Error;
+use crate::render::camera::Camera;
+#[cfg(feature = "rayon")]
+use crate::render::framebuffer::Framebuffer;
+use crate::render::options::RenderOptions;
+use crate::render::rounds::{PixelSamples, RoundsDone};
+use crate::render::shader::{Job, Kernel, Shader};
+use crate::render::stats::{RayStats, Rect};
+use crate::render::tiles::{render_tiles, Round, TILE};
+use crate::scene::Scene;
+
+/// Where a render writes its region's pixels, and on which threads.
+#[derive(Debug)]
+pub enum Target<'a> {
+    /// A caller's buffer, row-major with stride the region's width and at
+    /// least the region's area ([`Error::BufferTooSmall`] otherwise; the
+    /// rest is left alone), rendered on this thread. Allocates nothing.
+    Buffer(&'a mut [u32]),
+    /// The atomic framebuffer, exactly the region's size
+    /// ([`Error::SizeMismatch`] otherwise), rendered on the current rayon
+    /// pool, a band of rows per task. Allocates nothing beyond rayon's own
+    /// job bookkeeping.
+    #[cfg(feature = "rayon")]
+    Framebuffer(&'a Framebuffer),
+}
+
+/// Hears that a band of `n` rows is finished (from a worker thread, for a
+/// progress bar; keep it cheap).
+pub type RowsDone<'a> = Option<&'a (dyn Fn(u32) + Sync)>;
+
+/// Renders the crop `region` of `camera`'s frame into `target` in one
+/// pass: pixel `(x, y)` of the target is pixel `(region.x + x, region.y +
+/// y)` of the frame ([`Rect::full`] for the whole frame), the same bytes
+/// on every target and thread count; `rows_done` hears of each band of
+/// rows finished. Returns the rays traced, by kind.
+///
+/// ```
+/// use voxtrace::{render, Camera, CameraSettings, IAabb, OctreeScene};
+/// use voxtrace::{Rect, RenderOptions, Target, VoxelGenerator};
+///
+/// let scene = OctreeScene::build(&VoxelGenerator::new(1), IAabb::centered(32))?;
+/// let camera = Camera::new(CameraSettings { width: 64, height: 36, ..Default::default() })?;
+/// let mut pixels = vec![0u32; 64 * 36]; // packed RGBA8, R in the first byte
+/// let region = Rect::full(&camera);
+/// let rays = render(&scene, &camera, &RenderOptions::default(), region, Target::Buffer(&mut pixels), None)?;
+/// assert_eq!(rays.primary_rays, 64 * 36);
+/// # Ok::<(), voxtrace::Error>(())
+/// ```
+///
+/// # Errors
+/// A region outside the frame or too large to address, invalid options
+/// ([`RenderOptions::validate`]), or a target of the wrong size.
+pub fn render<S: Scene + Sync + ?Sized>(
+    scene: &S,
+    camera: &Camera,
+    options: &RenderOptions,
+    region: Rect,
+    target: Target<'_>,
+    rows_done: RowsDone<'_>,
+) -> Result<RayStats, Error> {
+    let target = checked(camera, options, region, target)?;
+    let job = FrameJob {
+        scene,
+        camera,
+        region,
+        target,
+        samples: None,
+        rows_done,
+        keep_going: &mut |_| false,
+    };
+    Ok(Shader::new(options, camera, scene.materials())
+        .dispatch(job)
+        .rays)
+}
+
+/// [`render`], the samples taken in rounds over the whole region
+/// ([`crate::Rounds`]): after each round every pixel of `target` holds
+/// its value so far, and `keep_going(n)`, asked on this thread after
+/// round `n` while a pixel is left that is not done, says whether round
+/// `n + 1` begins (round 1 always runs). The region after `n` rounds is
+/// byte for byte [`render`]'s with [`crate::Rounds::options_after`] `n`,
+/// and with every round taken it is [`render`]'s own. Only the path
+/// tracer samples in rounds: any other frame is one round.
+///
+/// `samples` is the state each pixel keeps between rounds, at least one
+/// per pixel of `region` (overwritten: no need to clear it).
+///
+/// # Errors
+/// As [`render`]; also a `samples` shorter than the region's area.
+// (The arguments of `render`, the pixels' state and the predicate:
+// bundling them would hide which is which.)
+#[allow(clippy::too_many_arguments)]
+pub fn render_in_rounds<S: Scene + Sync + ?Sized>(
+    scene: &S,
+    camera: &Camera,
+    options: &RenderOptions,
+    region: Rect,
+    target: Target<'_>,
+    samples: &mut [PixelSamples],
+    rows_done: RowsDone<'_>,
+    mut keep_going: impl FnMut(u32) -> bool,
+) -> Result<RoundsDone, Error> {
+    let target = checked(camera, options, region, target)?;
+    let required = region.area()?;
+    if samples.len() < required {
+        return Err(Error::BufferTooSmall {
+            required,
+            actual: samples.len(),
+        });
+    }
+    let job = FrameJob {
+        scene,
+        camera,
+        region,
+        target,
+        samples: Some(&mut samples[..required]),
+        rows_done,
+        keep_going: &mut keep_going,
+    };
+    Ok(Shader::new(options, camera, scene.materials()).dispatch(job))
+}
+
+/// The checks every render makes before it starts: a region the camera
+/// can render, usable options and a target of the region's size; the
+/// target cut to the region's area.
+fn checked<'a>(
+    camera: &Camera,
+    options: &RenderOptions,
+    region: Rect,
+    target: Target<'a>,
+) -> Result<Target<'a>, Error> {
+    region.validate(camera)?;
+    options.validate()?;
+    let required = region.area()?;
+    match target {
+        Target::Buffer(out) if out.len() < required => Err(Error::BufferTooSmall {
+            required,
+            actual: out.len(),
+        }),
+        Target::Buffer(out) => Ok(Target::Buffer(&mut out[..required])),
+        #[cfg(feature = "rayon")]
+        Target::Framebuffer(frame) => {
+            let actual = (frame.width(), frame.height());
+            if actual != (region.width, region.height) {
+                return Err(Error::SizeMismatch {
+                    expected: (region.width, region.height),
+                    actual,
+                });
+            }
+            Ok(Target::Framebuffer(frame))
+        }
+    }
+}
+
+/// A checked render: its region, target, and pixels' state between rounds
+/// (`None`: one pass).
+struct FrameJob<'a, S: ?Sized> {
+    scene: &'a S,
+    camera: &'a Camera,
+    region: Rect,
+    target: Target<'a>,
+    samples: Option<&'a mut [PixelSamples]>,
+    rows_done: RowsDone<'a>,
+    keep_going: &'a mut dyn FnMut(u32) -> bool,
+}
+
+impl<S: Scene + Sync + ?Sized> Job for FrameJob<'_, S> {
+    type Output = RoundsDone;
+
+    /// Round after round until no pixel is left that is not done or the
+    /// caller says stop. A kernel that takes its samples in one pass
+    /// makes every pixel in round 1, and its pixels' states say finished.
+    fn run<K: Kernel>(mut self, kernel: &K) -> RoundsDone {
+        let mut samples = self.samples.take();
+        if !K::RESUMES {
+            if let Some(samples) = samples.take() {
+                samples.fill(PixelSamples::finished());
+            }
+        } else if let Some(samples) = samples.as_deref_mut() {
+            samples.fill(PixelSamples::default());
+        }
+        let mut done = RoundsDone::default();
+        loop {
+            done.rounds += 1;
+            let (rays, left) = self.round(kernel, samples.as_deref_mut(), done.rounds);
+            done.rays += rays;
+            if !left {
+                done.complete = true;
+                return done;
+            }
+            if !(self.keep_going)(done.rounds) {
+                return done;
+            }
+        }
+    }
+}
+
+/// Rows per task of a round of a render in rounds: every round ends with
+/// a wait for its slowest task, and after the first the work left gathers
+/// where pixels are still noisy, so tasks are finer than one pass's bands
+/// of a tile's height (benches/README.md).
+const ROUND_BAND: u32 = 4;
+
+impl<S: Scene + Sync + ?Sized> FrameJob<'_, S> {
+    /// Round `n` (one pass when `samples` is `None`) over the region, a
+    /// band of rows at a time ([`Bands`]): on this thread into a buffer,
+    /// else one rayon task per band, each band its own job (left to
+    /// rayon's adaptive splitting, a thread would take a run of bands and
+    /// walk it alone, and where the costly bands bunch up, the terrain
+    /// under the sky, the other thread ran out of work). Returns the rays
+    /// traced and whether a pixel is left that is not done.
+    fn round<K: Kernel>(
+        &mut self,
+        kernel: &K,
+        samples: Option<&mut [PixelSamples]>,
+        n: u32,
+    ) -> (RayStats, bool) {
+        let rows = if samples.is_some() { ROUND_BAND } else { TILE };
+        let bands = Bands {
+            kernel,
+            scene: self.scene,
+            camera: self.camera,
+            region: self.region,
+            rows,
+            n,
+            rows_done: self.rows_done,
+        };
+        let band_len = self.region.width as usize * rows as usize;
+        let sum = |a: (RayStats, bool), b: (RayStats, bool)| (a.0 + b.0, a.1 || b.1);
+        match &mut self.target {
+            Target::Buffer(out) => {
+                let stride = self.region.width as usize;
+                let mut states = samples.map(|s| s.chunks_mut(band_len));
+                let each = out.chunks_mut(band_len).enumerate();
+                each.fold((RayStats::default(), false), |traced, (index, out)| {
+                    let states = states.as_mut().and_then(Iterator::next);
+                    let put =
+                        |dx: u32, dy: u32, rgba| out[dy as usize * stride + dx as usize] = rgba;
+                    sum(traced, bands.band(index, states, put))
+                })
+            }
+            #[cfg(feature = "rayon")]
+            Target::Framebuffer(frame) => {
+                let frame = &**frame;
+                let in_band = |index: usize, states| {
+                    let y0 = index as u32 * rows;
+                    bands.band(index, states, |dx, dy, rgba| {
+                        frame.set(dx, y0 + dy, rgba);
+                    })
+                };
+                let nothing = || (RayStats::default(), false);
+                match samples {
+                    Some(samples) => samples
+                        .par_chunks_mut(band_len)
+                        .with_max_len(1)
+                        .enumerate()
+                        .map(|(index, states)| in_band(index, Some(states)))
+                        .reduce(nothing, sum),
+                    None => (0..self.region.height.div_ceil(rows) as usize)
+                        .into_par_iter()
+                        .with_max_len(1)
+                        .map(|index| in_band(index, None))
+                        .reduce(nothing, sum),
+                }
+            }
+        }
+    }
+}
+
+/// A round's bands of `rows` rows of the region.
+struct Bands<'a, K, S: ?Sized> {
+    kernel: &'a K,
+    scene: &'a S,
+    camera: &'a Camera,
+    region: Rect,
+    rows: u32,
+    /// The round (with pixels' states; ignored in one pass).
+    n: u32,
+    rows_done: RowsDone<'a>,
+}
+
+impl<K: Kernel, S: Scene + Sync + ?Sized> Bands<'_, K, S> {
+    /// Band `index`, with its pixels' states in a render in rounds, its
+    /// pixels handed to `put(dx, dy, rgba)` at their offsets inside the
+    /// band: the rays traced and whether a pixel is left that is not done.
+    fn band(
+        &self,
+        index: usize,
+        samples: Option<&mut [PixelSamples]>,
+        put: impl FnMut(u32, u32, u32),
+    ) -> (RayStats, bool) {
+        let region = self.region;
+        let y = region.y + index as u32 * self.rows;
+        let rect = Rect {
+            y,
+            height: self.rows.min(region.y + region.height - y),
+            ..region
+        };
+        let round = samples.map(|samples| Round { n: self.n, samples });
+        let traced = render_tiles(self.kernel, self.scene, self.camera, rect, round, put);
+        if let Some(rows_done) = self.rows_done {
+            rows_done(rect.height);
+        }
+        traced
+    }
+}
