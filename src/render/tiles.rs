@@ -16,7 +16,7 @@ use crate::render::camera::{Camera, BLOCK_HEIGHT, BLOCK_WIDTH};
 use crate::render::rounds::PixelSamples;
 use crate::render::shader::{Block, BlockSamples, Kernel};
 use crate::render::stats::{RayStats, Rect};
-use crate::scene::{Scene, WalkMemory};
+use crate::scene::{Scene, WalkMemory, PACKET};
 
 /// Side of a tile in pixels: 256 rays share one walk of the tree's empty
 /// space (the measurements behind it are in benches/README.md).
@@ -51,14 +51,21 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
     scene: &S,
     camera: &Camera,
     rect: Rect,
-    mut round: Option<Round<'_>>,
-    mut put: impl FnMut(u32, u32, u32),
+    round: Option<Round<'_>>,
+    put: impl FnMut(u32, u32, u32),
 ) -> (RayStats, bool) {
-    let (mut stats, mut left) = (RayStats::default(), false);
-    // One memory for the whole rectangle: a tile's first ray begins from
-    // the last ray of the tile before, its neighbour.
-    let mut memory = WalkMemory::new();
-    let stride = rect.width as usize;
+    let mut blocks = Blocks {
+        kernel,
+        scene,
+        rect,
+        // One memory for the whole rectangle: a tile's first ray begins
+        // from the last ray of the tile before, its neighbour.
+        memory: WalkMemory::new(),
+        round,
+        put,
+        stats: RayStats::default(),
+    };
+    let mut left = false;
     let width = tile_width(kernel);
     // Offsets inside the rectangle, so that no sum passes u32::MAX for a
     // rectangle that reaches the last pixel of the largest frame.
@@ -72,15 +79,7 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
                 width: dx1 - dx0,
                 height: dy1 - dy0,
             };
-            let done = |samples: &[PixelSamples]| {
-                (dy0..dy1).all(|dy| {
-                    let row = dy as usize * stride;
-                    samples[row + dx0 as usize..row + dx1 as usize]
-                        .iter()
-                        .all(PixelSamples::is_done)
-                })
-            };
-            if K::RESUMES && round.as_ref().is_some_and(|r| done(r.samples)) {
+            if K::RESUMES && blocks.all_done(tile) == Some(true) {
                 continue;
             }
             let (x0, y0) = (rect.x.wrapping_add(dx0), rect.y.wrapping_add(dy0));
@@ -90,48 +89,89 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
             let frustum = beam.then(|| camera.tile_frustum(x0, y0, x1, y1)).flatten();
             let t_start = frustum.map_or(0.0, |f| scene.clear_distance(&f));
             #[cfg(feature = "packets")]
-            let blocks = kernel.in_blocks() && beam && packets_pay(camera, t_start);
+            let in_blocks = kernel.in_blocks() && beam && packets_pay(camera, t_start);
             #[cfg(not(feature = "packets"))]
-            let blocks = false;
-            for (bx, by, lanes) in blocks_of(tile, blocks) {
-                let corner = (rect.x.wrapping_add(bx), rect.y.wrapping_add(by));
-                let block = Block {
-                    corner,
-                    lanes,
-                    t_start,
-                };
-                let mut samples = round.as_mut().map(|r| BlockSamples {
-                    round: r.n,
-                    cells: &mut r.samples[by as usize * stride + bx as usize..],
-                    stride,
-                });
-                kernel.block(
-                    scene,
-                    block,
-                    &mut memory,
-                    samples.as_mut(),
-                    |i, rgba, rays| {
-                        let (dx, dy) = lane_offset(i);
-                        put(bx + dx, by + dy, rgba);
-                        stats += rays;
-                    },
-                );
+            let in_blocks = false;
+            if in_blocks {
+                for (bx, by, lanes) in blocks_of(tile) {
+                    blocks.make::<PACKET>((bx, by), lanes, t_start);
+                }
+            } else {
+                // Lone pixels, row-major: lane 0 alone.
+                for dy in dy0..dy1 {
+                    for dx in dx0..dx1 {
+                        blocks.make::<1>((dx, dy), 1, t_start);
+                    }
+                }
             }
-            left |= K::RESUMES && round.as_ref().is_some_and(|r| !done(r.samples));
+            left |= K::RESUMES && blocks.all_done(tile) == Some(false);
         }
     }
-    (stats, left)
+    (blocks.stats, left)
 }
 
-/// The blocks of `tile` (offsets inside the rectangle), row-major, each
-/// as its corner and lanes: 8x4 blocks (one the tile's edge cuts has the
-/// mask of its lanes inside) when `in_blocks`, else lone pixels.
-fn blocks_of(tile: Rect, in_blocks: bool) -> impl Iterator<Item = (u32, u32, u32)> {
-    let (width, height) = if in_blocks {
-        (BLOCK_WIDTH, BLOCK_HEIGHT)
-    } else {
-        (1, 1)
-    };
+/// What the blocks of a rectangle share: the kernel, the walk memory,
+/// the round's pixel states, where pixels go and the rays counted.
+struct Blocks<'a, 's, K, S: ?Sized, P> {
+    kernel: &'a K,
+    scene: &'s S,
+    rect: Rect,
+    memory: WalkMemory<'s>,
+    round: Option<Round<'a>>,
+    put: P,
+    stats: RayStats,
+}
+
+impl<K: Kernel, S: Scene + ?Sized, P: FnMut(u32, u32, u32)> Blocks<'_, '_, K, S, P> {
+    /// The pixels of the lanes `lanes` of the block whose corner is at
+    /// offset `(bx, by)` in the rectangle, clear until `t_start`, in
+    /// arrays of `N` lanes ([`Kernel::block`]).
+    #[inline(always)]
+    fn make<const N: usize>(&mut self, (bx, by): (u32, u32), lanes: u32, t_start: f32) {
+        let rect = self.rect;
+        let corner = (rect.x.wrapping_add(bx), rect.y.wrapping_add(by));
+        let block = Block {
+            corner,
+            lanes,
+            t_start,
+        };
+        let stride = rect.width as usize;
+        let mut samples = self.round.as_mut().map(|r| BlockSamples {
+            round: r.n,
+            cells: &mut r.samples[by as usize * stride + bx as usize..],
+            stride,
+        });
+        let (put, stats) = (&mut self.put, &mut self.stats);
+        let memory = &mut self.memory;
+        let samples = samples.as_mut();
+        self.kernel
+            .block::<S, N>(self.scene, block, memory, samples, |i, rgba, rays| {
+                let (dx, dy) = lane_offset(i);
+                put(bx + dx, by + dy, rgba);
+                *stats += rays;
+            });
+    }
+
+    /// Whether every pixel of `tile` is done, in a round (`None` in one
+    /// pass).
+    fn all_done(&self, tile: Rect) -> Option<bool> {
+        let samples = &self.round.as_ref()?.samples;
+        let stride = self.rect.width as usize;
+        let (dx0, dx1) = (tile.x as usize, (tile.x + tile.width) as usize);
+        Some((tile.y..tile.y + tile.height).all(|dy| {
+            let row = dy as usize * stride;
+            samples[row + dx0..row + dx1]
+                .iter()
+                .all(PixelSamples::is_done)
+        }))
+    }
+}
+
+/// The 8x4 blocks of `tile` (offsets inside the rectangle), row-major,
+/// each as its corner and lanes (one the tile's edge cuts has the mask of
+/// its lanes inside).
+fn blocks_of(tile: Rect) -> impl Iterator<Item = (u32, u32, u32)> {
+    let (width, height) = (BLOCK_WIDTH, BLOCK_HEIGHT);
     // Offsets, which stay below the rectangle's size: no sum overflows.
     let (dx1, dy1) = (tile.x + tile.width, tile.y + tile.height);
     (tile.y..dy1).step_by(height as usize).flat_map(move |by| {

@@ -18,7 +18,7 @@ use crate::render::rays::primary;
 use crate::render::rounds::PixelSamples;
 use crate::render::shade::{pack, sky, FLAT_SKY};
 use crate::render::shader::lit::Lit;
-use crate::render::shader::{each_lane, lane_rays, trace_rays, LANES};
+use crate::render::shader::{each_lane, lane_rays, trace_rays};
 use crate::render::shader::{Block, BlockSamples, Job, Kernel, Shader};
 use crate::render::stats::RayStats;
 use crate::scene::{Hit, Reach, Scene, WalkMemory};
@@ -113,7 +113,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Kernel
     /// them in one pass, else from the lane's samples so far to the end
     /// of the round.
     #[inline]
-    fn block<'s, S: Scene + ?Sized>(
+    fn block<'s, S: Scene + ?Sized, const N: usize>(
         &self,
         scene: &'s S,
         block: Block,
@@ -149,7 +149,7 @@ impl Kernel for Flat<'_, '_, '_> {
     /// The lanes' camera rays through their pixels' centers, traced
     /// together, each hit's color.
     #[inline]
-    fn block<'s, S: Scene + ?Sized>(
+    fn block<'s, S: Scene + ?Sized, const N: usize>(
         &self,
         scene: &'s S,
         Block {
@@ -172,7 +172,7 @@ impl Kernel for Flat<'_, '_, '_> {
             return;
         }
         let rays = lane_rays(self.0.camera, corner, lanes, None);
-        let mut hits = [None; LANES];
+        let mut hits = [None; N];
         trace_rays(scene, &rays, lanes, reach, memory, &mut hits);
         for i in each_lane(lanes) {
             let (rgba, rays) = self.color(hits[i]);
@@ -196,7 +196,7 @@ pub(super) struct DebugView<'s, 'c, 'm>(pub(super) &'s Shader<'c, 'm>);
 impl Kernel for DebugView<'_, '_, '_> {
     /// Each lane's camera ray walked from the camera, stopped at the
     /// first box it enters near an edge.
-    fn block<'s, S: Scene + ?Sized>(
+    fn block<'s, S: Scene + ?Sized, const N: usize>(
         &self,
         scene: &'s S,
         block: Block,

@@ -16,7 +16,7 @@ use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{face_index, fog_blend, lit, pack, pack_mean, sky};
 use crate::render::shader::{
-    each_lane, lane_rays, trace_rays, Block, BlockSamples, Kernel, Shader, LANES,
+    each_lane, lane_rays, trace_rays, Block, BlockSamples, Kernel, Shader,
 };
 use crate::render::stats::RayStats;
 use crate::scene::{Hit, Reach, Scene, WalkMemory};
@@ -59,7 +59,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
     /// each lane shaded ([`Lit::shade`]); a pixel of one sample is packed
     /// as it is shaded, one of several is their mean ([`Mean`]).
     #[inline]
-    fn block<'s, S: Scene + ?Sized>(
+    fn block<'s, S: Scene + ?Sized, const N: usize>(
         &self,
         scene: &'s S,
         Block {
@@ -72,10 +72,10 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         mut put: impl FnMut(usize, u32, RayStats),
     ) {
         let (one_ray, reach) = (self.one_ray(), Reach::after(t_start));
-        let mut means = [Mean::default(); LANES];
+        let mut means = [Mean::default(); N];
         for s in 0..self.samples() {
             let rays = lane_rays(self.0.camera, corner, lanes, (!one_ray).then_some(s));
-            let mut hits = [None; LANES];
+            let mut hits = [None; N];
             trace_rays(scene, &rays, lanes, reach, memory, &mut hits);
             let blocked = self.shadowed(scene, (&rays, &hits), lanes, memory);
             let open = self.open(scene, (corner, s), (&rays, &hits), lanes, memory);
@@ -162,10 +162,10 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
     /// camera rays' memory (the next pixels' camera rays begin from it):
     /// several together ([`trace_rays`]), a lone lane's alone.
     #[inline]
-    fn shadowed<'s, S: Scene + ?Sized>(
+    fn shadowed<'s, S: Scene + ?Sized, const N: usize>(
         &self,
         scene: &'s S,
-        (rays, hits): (&[Ray; LANES], &[Option<Hit>; LANES]),
+        (rays, hits): (&[Ray; N], &[Option<Hit>; N]),
         lanes: u32,
         memory: &WalkMemory<'s>,
     ) -> u32 {
@@ -190,7 +190,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
                 sent |= 1 << i;
             }
         }
-        let mut blockers = [None; LANES];
+        let mut blockers = [None; N];
         trace_rays(scene, &shadows, sent, Reach::ALL, memory, &mut blockers);
         let blocked = |i: usize| u32::from(blockers[i].is_some()) << i;
         each_lane(sent).fold(0, |mask, i| mask | blocked(i))
@@ -203,15 +203,15 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
     /// without occlusion): in packets by octant for close hits
     /// (`packets.rs`), else alone from a copy of the camera ray's memory.
     #[inline]
-    fn open<'s, S: Scene + ?Sized>(
+    fn open<'s, S: Scene + ?Sized, const N: usize>(
         &self,
         scene: &'s S,
         (corner, sample): ((u32, u32), u32),
-        (rays, hits): (&[Ray; LANES], &[Option<Hit>; LANES]),
+        (rays, hits): (&[Ray; N], &[Option<Hit>; N]),
         lanes: u32,
         memory: &WalkMemory<'s>,
-    ) -> [u32; LANES] {
-        let mut open = [0u32; LANES];
+    ) -> [u32; N] {
+        let mut open = [0u32; N];
         let Some(ao) = self.0.options.occlusion.filter(|_| AO) else {
             return open;
         };

@@ -174,13 +174,15 @@ impl BlockSamples<'_> {
 /// Computes pixels with one fixed set of effects.
 pub(crate) trait Kernel: Sync {
     /// The pixels of `block`, handed to `put(i, rgba, rays)`, lowest lane
-    /// first. Its walks may begin from what the previous block's left in
+    /// first, made in arrays of `N` lanes: [`crate::PACKET`] for an 8x4 block,
+    /// 1 for a lone pixel (lane 0 alone), so that a lone pixel fills no
+    /// block's arrays. Its walks may begin from what the previous block's left in
     /// `memory`; a pixel is the same for any `t_start` it is given and
     /// any memory. `samples` is `None` in one pass (each pixel takes all
     /// its samples); in a render in rounds, which only the path tracer
     /// takes ([`Kernel::RESUMES`]), it holds each lane's samples so far,
     /// and a lane that is done is not handed out.
-    fn block<'s, S: Scene + ?Sized>(
+    fn block<'s, S: Scene + ?Sized, const N: usize>(
         &self,
         scene: &'s S,
         block: Block,
@@ -207,13 +209,6 @@ pub(crate) trait Kernel: Sync {
     }
 }
 
-/// Lanes of the arrays a block's pixels are made in: one without the
-/// feature `packets`, where the only blocks are lone pixels.
-#[cfg(feature = "packets")]
-pub(crate) const LANES: usize = PACKET;
-#[cfg(not(feature = "packets"))]
-pub(crate) const LANES: usize = 1;
-
 /// The set bits of `lanes`, lowest first.
 #[inline]
 fn each_lane(mut lanes: u32) -> impl Iterator<Item = usize> {
@@ -224,43 +219,55 @@ fn each_lane(mut lanes: u32) -> impl Iterator<Item = usize> {
     })
 }
 
-/// The camera rays of the lanes `lanes` of the 8x4 block from `corner`:
-/// lane `i`'s through its pixel ([`block_pixel`]) as [`sample_ray`]
-/// makes it for `sample`, bit for bit. The other lanes hold some camera
-/// ray, which no one traces. Several lanes are made four at a time.
-#[inline]
-fn lane_rays(camera: &Camera, corner: (u32, u32), lanes: u32, sample: Option<u32>) -> [Ray; LANES] {
+/// The camera rays of the lanes `lanes` of the 8x4 block from `corner`,
+/// in arrays of `N` lanes (`PACKET`, or 1 for a lone pixel): lane `i`'s
+/// through its pixel ([`block_pixel`]) as [`sample_ray`] makes it for
+/// `sample`, bit for bit. The other lanes hold some camera ray, which no
+/// one traces. Several lanes are made four at a time.
+#[inline(always)]
+fn lane_rays<const N: usize>(
+    camera: &Camera,
+    corner: (u32, u32),
+    lanes: u32,
+    sample: Option<u32>,
+) -> [Ray; N] {
     #[cfg(feature = "packets")]
-    if !lanes.is_power_of_two() {
-        return match sample {
+    if N == PACKET && !lanes.is_power_of_two() {
+        let rays = match sample {
             None => camera.block_rays(corner.0, corner.1),
             Some(s) => {
                 camera.block_sample_rays(corner, |i| sample_offset(block_pixel(corner, i), s))
             }
         };
+        return core::array::from_fn(|i| rays[i]);
     }
     // A lone lane's ray, in every lane.
     let lane = lanes.trailing_zeros() as usize;
-    [sample_ray(camera, block_pixel(corner, lane), sample); LANES]
+    [sample_ray(camera, block_pixel(corner, lane), sample); N]
 }
 
 /// The hits of the lanes `lanes` of `rays` over `reach`, into `hits`
 /// (other lanes untouched), exactly [`Scene::trace_with`]'s: several by
 /// [`Scene::trace_lanes`], a lone lane by its own walk (a packet of one
 /// shares nothing).
-#[inline]
-fn trace_rays<'s, S: Scene + ?Sized>(
+#[inline(always)]
+fn trace_rays<'s, S: Scene + ?Sized, const N: usize>(
     scene: &'s S,
-    rays: &[Ray; LANES],
+    rays: &[Ray; N],
     lanes: u32,
     reach: Reach,
     memory: &mut WalkMemory<'s>,
-    hits: &mut [Option<Hit>; LANES],
+    hits: &mut [Option<Hit>; N],
 ) {
     #[cfg(feature = "packets")]
-    if !lanes.is_power_of_two() {
-        scene.trace_lanes(rays, lanes, reach, memory, hits);
-        return;
+    if let (Ok(packet), Ok(answers)) = (
+        <&[Ray; PACKET]>::try_from(&rays[..]),
+        <&mut [Option<Hit>; PACKET]>::try_from(&mut hits[..]),
+    ) {
+        if !lanes.is_power_of_two() {
+            scene.trace_lanes(packet, lanes, reach, memory, answers);
+            return;
+        }
     }
     for i in each_lane(lanes) {
         hits[i] = scene.trace_with(&rays[i], reach, memory, None).hit;

@@ -42,7 +42,7 @@ impl Bin {
         scene: &'s S,
         reach: Reach,
         memory: &WalkMemory<'s>,
-        open: &mut [u32; PACKET],
+        open: &mut [u32],
     ) {
         if self.len == 0 {
             return;
@@ -82,7 +82,7 @@ fn octant(dir: Vec3A) -> usize {
 /// and 1920x1080; within the reach, 108, 285 and 861; within half of it,
 /// 108, 319 and 903; no packets, 108, 347 and 1204.
 #[inline]
-pub(super) fn close(hits: &[Option<Hit>; PACKET], reach: f32) -> bool {
+pub(super) fn close(hits: &[Option<Hit>], reach: f32) -> bool {
     let (mut lo, mut hi) = (IVec3::MAX, IVec3::MIN);
     for hit in hits.iter().flatten() {
         lo = lo.min(hit.pos);
