@@ -10,9 +10,8 @@
 //! What a frame simulates is [`RenderOptions`]: the terrain's look by
 //! default (face shading under a sun, one primary ray per pixel), with
 //! shadows, ambient occlusion, anti-aliasing, fog and the seed paper's debug
-//! view each opt-in; the renderer picks a pixel kernel compiled for exactly
-//! the chosen effects once per frame (feature `effect-kernels`), and
-//! [`RayStats`] counts rays by kind. Scenes with metal, glass or emitters
+//! view each opt-in; the renderer picks the look's pixel kernel once per
+//! frame, and [`RayStats`] counts rays by kind. Scenes with metal, glass or emitters
 //! are path-traced (feature `path`).
 //!
 //! The core is `#![no_std]` and allocation-explicit: storages build into
@@ -59,14 +58,12 @@
 //!   diffuse, and the [`EffectPlan`]'s description says so. Its frames
 //!   may take their samples in rounds a caller stops between
 //!   ([`render_in_rounds`], [`Rounds`]; a time budget).
-//! - `effect-kernels` (default): one pixel kernel compiled per set of
-//!   effects, so an effect that is off costs nothing per ray. Without it
-//!   each look has one kernel that tests the effects per pixel: the same
-//!   pixels from far less code, a little slower.
+//! - `packets` (default): camera rays, and the lit look's shadow and
+//!   occlusion rays, traced 32 at a time (the same pixels, faster).
 //!
-//! Firmware that must be small leaves both off (`default-features =
+//! Firmware that must be small leaves them off (`default-features =
 //! false`), as the repository's `frontends/embedded` does: the path
-//! tracer's kernels and the per-effect copies are most of a render's code.
+//! tracer and the packet walks are most of a render's code.
 
 #![no_std]
 #![cfg_attr(docsrs, feature(doc_cfg))]

@@ -18,7 +18,7 @@ use crate::scene::{Hit, Reach, Scene, WalkMemory};
 /// rays toward the lights each begin from `memory`, left at the hit by the
 /// walk that found it (each takes a copy).
 #[allow(clippy::too_many_arguments)]
-pub(super) fn light<'s, S: Scene + ?Sized, const EMIT: bool>(
+pub(super) fn light<'s, S: Scene + ?Sized>(
     scene: &'s S,
     setup: &PathSetup<'_>,
     ray: &Ray,
@@ -47,7 +47,7 @@ pub(super) fn light<'s, S: Scene + ?Sized, const EMIT: bool>(
             }
         }
     }
-    if EMIT && !setup.emitters.is_empty() {
+    if !setup.emitters.is_empty() {
         light += emitter(scene, setup, ray, hit, n, rng, stats, memory);
     }
     light

@@ -137,12 +137,12 @@ impl<'m> PathSetup<'m> {
 }
 
 /// The path-traced look, compiled for the material kinds the scene holds.
-pub(crate) struct Path<'s, 'm, const GLASS: bool, const METAL: bool, const EMIT: bool> {
+pub(crate) struct Path<'s, 'm> {
     pub(crate) camera: &'s Camera,
     pub(crate) setup: &'s PathSetup<'m>,
 }
 
-impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS, METAL, EMIT> {
+impl Path<'_, '_> {
     /// The radiance along one camera ray, which hits nothing before
     /// `t_start`.
     fn radiance<'s, S: Scene + ?Sized>(
@@ -183,13 +183,13 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
             let albedo = h.voxel.color.as_vec3() * (1.0 / 255.0);
             let choice = rng.next();
             match material.kind() {
-                MaterialKind::Emissive if EMIT && material.emission() > 0.0 => {
+                MaterialKind::Emissive if material.emission() > 0.0 => {
                     if count_emission || setup.emitters.is_empty() {
                         sum += beta * albedo * material.emission();
                     }
                     break;
                 }
-                MaterialKind::Metal if METAL && choice.x < material.metalness() => {
+                MaterialKind::Metal if choice.x < material.metalness() => {
                     let Some(face) = h.face else { break };
                     if specular_left == 0 {
                         break;
@@ -211,7 +211,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
                     hit = scene.trace_with(&ray, Reach::ALL, path_memory, None).hit;
                     continue;
                 }
-                MaterialKind::Glass if GLASS && choice.x < material.transparency() => {
+                MaterialKind::Glass if choice.x < material.transparency() => {
                     match through_glass(
                         scene,
                         setup.materials,
@@ -249,7 +249,7 @@ impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS,
             let Some(face) = h.face else { break };
             sum += beta
                 * albedo
-                * direct::light::<S, EMIT>(scene, setup, &ray, &h, face, rng, stats, path_memory);
+                * direct::light(scene, setup, &ray, &h, face, rng, stats, path_memory);
             if diffuse_left == 0 {
                 break;
             }

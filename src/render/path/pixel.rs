@@ -15,7 +15,7 @@ use crate::scene::{Scene, WalkMemory};
 
 use super::{Path, Rng, MAX_RADIANCE};
 
-impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Path<'_, '_, GLASS, METAL, EMIT> {
+impl Path<'_, '_> {
     /// Pixel `(x, y)` continued from `pixel` to the end of round `round`
     /// (from 1; `u32::MAX` for every sample, one pass): its packed color
     /// and the rays traced, `None` when it was already done. After round

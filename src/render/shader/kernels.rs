@@ -1,18 +1,15 @@
-//! The kernels a [`Shader`] runs a frame's job with, and the one match
-//! that picks them ([`Shader::dispatch`]): the unshaded look, the debug
-//! view of the boxes a walk crosses, the lit look with its effects as
-//! `const` switches (shadows, occlusion, fog, supersampling; its kernel
-//! lives in `lit.rs`), and the path
-//! tracer (whose kernel lives in `render/path/`, feature `path`) for scenes
-//! with metal, glass or emitters. Without the feature `effect-kernels` the
-//! lit look and the path tracer each compile one kernel, every switch on.
+//! The kernels a [`Shader`] runs a frame's job with, one per look, and
+//! the one choice between them ([`Shader::dispatch`]): the unshaded look,
+//! the debug view of the boxes a walk crosses, the lit look (its kernel
+//! in `lit.rs`) and the path tracer for scenes with metal, glass or
+//! emitters (its kernel in `render/path/`, feature `path`).
 
 use glam::U8Vec3;
 
 use crate::render::camera::block_pixel;
 use crate::render::debug_view::{box_color, enters_near_edge};
 #[cfg(feature = "path")]
-use crate::render::path::{Path, PathSetup};
+use crate::render::path::Path;
 use crate::render::rays::primary;
 #[cfg(feature = "path")]
 use crate::render::rounds::PixelSamples;
@@ -23,90 +20,30 @@ use crate::render::shader::{Block, BlockSamples, Job, Kernel, Shader};
 use crate::render::stats::RayStats;
 use crate::scene::{Hit, Reach, Scene, WalkMemory};
 
-impl<'m> Shader<'_, 'm> {
-    /// Runs `job` with the kernel compiled for this frame's effects.
+impl Shader<'_, '_> {
+    /// Runs `job` with the kernel of this frame's look: the flat look, the
+    /// debug view, the path tracer (for the material kinds the plan
+    /// found) or the lit look.
     pub(crate) fn dispatch<J: Job>(&self, job: J) -> J::Output {
-        let o = &self.options;
-        if o.flat {
+        if self.options.flat {
             return job.run(&Flat(self));
         }
-        if o.debug {
+        if self.options.debug {
             return job.run(&DebugView(self));
         }
         #[cfg(feature = "path")]
         if let Some(setup) = &self.path {
-            return self.dispatch_path(setup, job);
+            return job.run(&Path {
+                camera: self.camera,
+                setup,
+            });
         }
-        if !cfg!(feature = "effect-kernels") {
-            return job.run(&Lit::<true, true, true, true, false>(self));
-        }
-        let set = (
-            o.shadows,
-            o.occlusion.is_some(),
-            o.fog.is_some(),
-            o.samples > 1,
-        );
-        macro_rules! lit_kernels {
-            ($(($sh:literal, $ao:literal, $fog:literal, $aa:literal)),* $(,)?) => {
-                match set {
-                    $(($sh, $ao, $fog, $aa) => job.run(&Lit::<$sh, $ao, $fog, $aa, true>(self)),)*
-                }
-            };
-        }
-        lit_kernels!(
-            (false, false, false, false),
-            (false, false, false, true),
-            (false, false, true, false),
-            (false, false, true, true),
-            (false, true, false, false),
-            (false, true, false, true),
-            (false, true, true, false),
-            (false, true, true, true),
-            (true, false, false, false),
-            (true, false, false, true),
-            (true, false, true, false),
-            (true, false, true, true),
-            (true, true, false, false),
-            (true, true, false, true),
-            (true, true, true, false),
-            (true, true, true, true),
-        )
-    }
-
-    /// Runs `job` with the path tracer compiled for the material kinds
-    /// the scene holds.
-    #[cfg(feature = "path")]
-    fn dispatch_path<J: Job>(&self, setup: &PathSetup<'m>, job: J) -> J::Output {
-        let camera = self.camera;
-        if !cfg!(feature = "effect-kernels") {
-            // The kinds a scene lacks never match: the same pixels.
-            return job.run(&Path::<true, true, true> { camera, setup });
-        }
-        let kinds = setup.materials.kinds();
-        macro_rules! path_kernels {
-            ($(($g:literal, $m:literal, $e:literal)),* $(,)?) => {
-                match (kinds.glass, kinds.metal, kinds.emissive) {
-                    $(($g, $m, $e) => job.run(&Path::<$g, $m, $e> { camera, setup }),)*
-                }
-            };
-        }
-        path_kernels!(
-            (false, false, false),
-            (false, false, true),
-            (false, true, false),
-            (false, true, true),
-            (true, false, false),
-            (true, false, true),
-            (true, true, false),
-            (true, true, true),
-        )
+        job.run(&Lit(self))
     }
 }
 
 #[cfg(feature = "path")]
-impl<const GLASS: bool, const METAL: bool, const EMIT: bool> Kernel
-    for Path<'_, '_, GLASS, METAL, EMIT>
-{
+impl Kernel for Path<'_, '_> {
     const RESUMES: bool = true;
 
     /// Each lane's samples in order ([`Path::take_samples`]): all of

@@ -1,5 +1,5 @@
-//! The lit look: face light, and the effects a frame asks for as `const`
-//! switches (shadows, occlusion, fog, supersampling).
+//! The lit look: face light, and the effects a frame asks for (shadows,
+//! occlusion, fog, supersampling).
 //!
 //! One route makes every pixel, [`Lit`]'s [`Kernel::block`]: the lanes
 //! of an 8x4 block a mask picks (a lone pixel is lane 0 alone), sample by
@@ -11,7 +11,7 @@ use glam::{U8Vec3, UVec3};
 
 use crate::geom::{Face, Ray};
 use crate::render::camera::block_pixel;
-use crate::render::options::Background;
+use crate::render::options::{Background, Occlusion};
 use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{face_index, fog_blend, lit, pack, pack_mean, sky};
@@ -27,28 +27,13 @@ mod packets;
 #[cfg(feature = "packets")]
 use packets::{close, put, Bin};
 
-/// The lit look with the chosen effects: shadows, ambient occlusion, fog and
-/// several samples per pixel, each compiled in only when on.
-///
-/// `EXACT`: the frame asks for exactly the effects compiled in (the
-/// dispatch of `effect-kernels` builds). Otherwise an effect runs when it
-/// is compiled in and the frame asks for it, so the kernel with every
-/// switch on gives any frame its pixels: builds without `effect-kernels`
-/// run every frame with that one.
-pub(super) struct Lit<
-    's,
-    'c,
-    'm,
-    const SHADOWS: bool,
-    const AO: bool,
-    const FOG: bool,
-    const AA: bool,
-    const EXACT: bool,
->(pub(super) &'s Shader<'c, 'm>);
+/// The lit look with the effects the frame asks for: shadows, ambient
+/// occlusion, fog and several samples per pixel, each tested once per
+/// sample (a copy of the kernel per set of effects saved under 3% of a
+/// render's instructions: benches/README.md).
+pub(super) struct Lit<'s, 'c, 'm>(pub(super) &'s Shader<'c, 'm>);
 
-impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const EXACT: bool> Kernel
-    for Lit<'_, '_, '_, SHADOWS, AO, FOG, AA, EXACT>
-{
+impl Kernel for Lit<'_, '_, '_> {
     #[cfg(feature = "packets")]
     fn in_blocks(&self) -> bool {
         true
@@ -72,28 +57,34 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
         mut put: impl FnMut(usize, u32, RayStats),
     ) {
         let (one_ray, reach) = (self.one_ray(), Reach::after(t_start));
-        let mut means = [Mean::default(); N];
+        // A pixel of several samples is their mean, summed as they come.
+        let mut means = (!one_ray).then(|| [Mean::default(); N]);
         for s in 0..self.samples() {
             let rays = lane_rays(self.0.camera, corner, lanes, (!one_ray).then_some(s));
             let mut hits = [None; N];
             trace_rays(scene, &rays, lanes, reach, memory, &mut hits);
             let blocked = self.shadowed(scene, (&rays, &hits), lanes, memory);
-            let open = self.open(scene, (corner, s), (&rays, &hits), lanes, memory);
+            let open = match self.0.options.occlusion {
+                Some(ao) => self.open(scene, ao, (corner, s), (&rays, &hits), lanes, memory),
+                None => [0; N],
+            };
             for i in each_lane(lanes) {
                 let shaded = self.shade(&rays[i], hits[i], blocked >> i & 1 != 0, open[i]);
-                if one_ray {
-                    let (rgba, rays) = self.packed(shaded);
-                    put(i, rgba, rays);
-                } else {
-                    means[i].add(shaded, self.0);
+                match &mut means {
+                    None => {
+                        let (rgba, rays) = self.packed(shaded);
+                        put(i, rgba, rays);
+                    }
+                    Some(means) => means[i].add(shaded, self.0),
                 }
             }
         }
-        if !one_ray {
-            for i in each_lane(lanes) {
-                let (rgba, rays) = means[i].pixel(self.samples(), self.0);
-                put(i, rgba, rays);
-            }
+        for (i, mean) in means
+            .iter()
+            .flat_map(|m| each_lane(lanes).map(move |i| (i, m[i])))
+        {
+            let (rgba, rays) = mean.pixel(self.samples(), self.0);
+            put(i, rgba, rays);
         }
     }
 }
@@ -129,14 +120,12 @@ impl Mean {
     }
 }
 
-impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const EXACT: bool>
-    Lit<'_, '_, '_, SHADOWS, AO, FOG, AA, EXACT>
-{
+impl Lit<'_, '_, '_> {
     /// One sample per pixel (occlusion and fog test their settings
     /// anyway).
     #[inline]
     fn one_ray(&self) -> bool {
-        !(AA && (EXACT || self.0.options.samples > 1))
+        self.0.options.samples <= 1
     }
 
     /// Camera samples per pixel.
@@ -152,7 +141,7 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
     /// Whether the frame's hits send shadow rays.
     #[inline]
     fn shadows(&self) -> bool {
-        SHADOWS && (EXACT || self.0.options.shadows)
+        self.0.options.shadows
     }
 
     /// The lanes of `lanes` whose hit (`hits[i]`, of the camera ray
@@ -198,23 +187,21 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
 
     /// How many occlusion rays of each lane's hit (`hits[i]`, of the camera
     /// ray `rays[i]`, sample `sample` of lane `i` of the block from
-    /// `corner`) meet nothing within their reach, one that cannot leave
-    /// the face counted open (0 for a lane without a face, or a frame
-    /// without occlusion): in packets by octant for close hits
+    /// `corner`) meet nothing within the reach of `ao`, one that cannot
+    /// leave the face counted open (0 for a lane without a face): in
+    /// packets by octant for close hits
     /// (`packets.rs`), else alone from a copy of the camera ray's memory.
     #[inline]
     fn open<'s, S: Scene + ?Sized, const N: usize>(
         &self,
         scene: &'s S,
+        ao: Occlusion,
         (corner, sample): ((u32, u32), u32),
         (rays, hits): (&[Ray; N], &[Option<Hit>; N]),
         lanes: u32,
         memory: &WalkMemory<'s>,
     ) -> [u32; N] {
         let mut open = [0u32; N];
-        let Some(ao) = self.0.options.occlusion.filter(|_| AO) else {
-            return open;
-        };
         let reach = Reach::within(ao.distance);
         #[cfg(feature = "packets")]
         let mut bins =
@@ -276,18 +263,14 @@ impl<const SHADOWS: bool, const AO: bool, const FOG: bool, const AA: bool, const
                 light = u32::from(shader.shadowed[face]);
             }
         }
-        if AO {
-            if let (Some(_), Some(ao)) = (hit.face, shader.options.occlusion) {
-                let rays = u32::from(ao.rays);
-                stats.ao_rays += u64::from(rays);
-                light = light * open / rays;
-            }
+        if let (Some(_), Some(ao)) = (hit.face, shader.options.occlusion) {
+            let rays = u32::from(ao.rays);
+            stats.ao_rays += u64::from(rays);
+            light = light * open / rays;
         }
         let mut color = lit(hit.voxel.color, light);
-        if FOG {
-            if let Some(fog) = shader.options.fog {
-                color = fog_blend(color, hit.t, fog.distance);
-            }
+        if let Some(fog) = shader.options.fog {
+            color = fog_blend(color, hit.t, fog.distance);
         }
         (color, stats)
     }
