@@ -189,10 +189,10 @@ impl Ray {
         }
     }
 
-    /// [`Ray::origin`], [`Ray::dir`] and [`Ray::inv_dir`] as the lanes
-    /// they are kept in.
+    /// [`Ray::origin`], [`Ray::dir`] and [`Ray::inv_dir`] as the SIMD
+    /// vectors they are kept in.
     #[inline]
-    pub(crate) fn lanes(&self) -> (Vec3A, Vec3A, Vec3A) {
+    pub(crate) fn vectors(&self) -> (Vec3A, Vec3A, Vec3A) {
         (self.origin, self.dir, self.inv_dir)
     }
 

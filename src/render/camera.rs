@@ -372,7 +372,7 @@ impl Camera {
     fn ray_to(&self, pixel: Vec3A) -> Ray {
         if self.orthographic {
             // Every ray along the view, from its image-plane point.
-            let (_, dir, _) = self.forward.lanes();
+            let (_, dir, _) = self.forward.vectors();
             return Ray::from_lanes(pixel, dir).unwrap_or(self.forward);
         }
         // Validation made this unreachable; the fallback keeps the promise

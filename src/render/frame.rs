@@ -19,7 +19,7 @@ use crate::render::camera::Camera;
 use crate::render::framebuffer::Framebuffer;
 use crate::render::options::RenderOptions;
 use crate::render::rounds::{PixelSamples, RoundsDone};
-use crate::render::shader::{Job, Kernel, Shader};
+use crate::render::shader::{FrameSetup, Job, Kernel};
 use crate::render::stats::{RayStats, Rect};
 use crate::render::tiles::{render_tiles, Round, TILE};
 use crate::scene::Scene;
@@ -83,7 +83,7 @@ pub fn render<S: Scene + Sync + ?Sized>(
         rows_done,
         keep_going: &mut |_| false,
     };
-    Ok(Shader::new(options, camera, scene.materials())
+    Ok(FrameSetup::new(options, camera, scene.materials())
         .dispatch(job)
         .rays)
 }
@@ -132,7 +132,7 @@ pub fn render_in_rounds<S: Scene + Sync + ?Sized>(
         rows_done,
         keep_going: &mut keep_going,
     };
-    Ok(Shader::new(options, camera, scene.materials()).dispatch(job))
+    Ok(FrameSetup::new(options, camera, scene.materials()).dispatch(job))
 }
 
 /// The checks every render makes before it starts: a region the camera

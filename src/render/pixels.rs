@@ -148,7 +148,7 @@ impl<'a> Producer for PixelProducer<'a> {
 ///
 /// To keep neighbouring pixels on one thread, combine it with rayon's
 /// chunking adapters, for example `fold_chunks(width, ..)` for whole rows.
-/// ([`crate::render`] does not use it: it hands out bands of rows
+/// ([`crate::render()`] does not use it: it hands out bands of rows
 /// traced in tiles, each band its own job.)
 #[derive(Clone, Copy, Debug)]
 pub struct ParPixels<'a> {

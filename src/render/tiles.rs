@@ -87,20 +87,20 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
             // (A tile past u32::MAX, outside every frame, wraps: no beam.)
             let beam = kernel.uses_beam() && x1 > x0 && y1 > y0;
             let frustum = beam.then(|| camera.tile_frustum(x0, y0, x1, y1)).flatten();
-            let t_start = frustum.map_or(0.0, |f| scene.clear_distance(&f));
+            let clear = frustum.map_or(0.0, |f| scene.clear_distance(&f));
             #[cfg(feature = "packets")]
-            let in_blocks = kernel.in_blocks() && beam && packets_pay(camera, t_start);
+            let in_blocks = kernel.in_blocks() && beam && packets_pay(camera, clear);
             #[cfg(not(feature = "packets"))]
             let in_blocks = false;
             if in_blocks {
                 for (bx, by, lanes) in blocks_of(tile) {
-                    blocks.make::<PACKET>((bx, by), lanes, t_start);
+                    blocks.make::<PACKET>((bx, by), lanes, clear);
                 }
             } else {
                 // Lone pixels, row-major: lane 0 alone.
                 for dy in dy0..dy1 {
                     for dx in dx0..dx1 {
-                        blocks.make::<1>((dx, dy), 1, t_start);
+                        blocks.make::<1>((dx, dy), 1, clear);
                     }
                 }
             }
@@ -124,16 +124,16 @@ struct Blocks<'a, 's, K, S: ?Sized, P> {
 
 impl<K: Kernel, S: Scene + ?Sized, P: FnMut(u32, u32, u32)> Blocks<'_, '_, K, S, P> {
     /// The pixels of the lanes `lanes` of the block whose corner is at
-    /// offset `(bx, by)` in the rectangle, clear until `t_start`, in
+    /// offset `(bx, by)` in the rectangle, clear until its clear distance `clear`, in
     /// arrays of `N` lanes ([`Kernel::block`]).
     #[inline(always)]
-    fn make<const N: usize>(&mut self, (bx, by): (u32, u32), lanes: u32, t_start: f32) {
+    fn make<const N: usize>(&mut self, (bx, by): (u32, u32), lanes: u32, clear: f32) {
         let rect = self.rect;
         let corner = (rect.x.wrapping_add(bx), rect.y.wrapping_add(by));
         let block = Block {
             corner,
             lanes,
-            t_start,
+            clear,
         };
         let stride = rect.width as usize;
         let mut samples = self.round.as_mut().map(|r| BlockSamples {
@@ -202,13 +202,13 @@ fn tile_width(kernel: &impl Kernel) -> u32 {
     TILE
 }
 
-/// Whether a tile's rays, clear until `t_start`, are coherent enough for
+/// Whether a tile's rays, clear until their clear distance `clear`, are coherent enough for
 /// packets: an 8x4 block's rays are at most [`MAX_SPREAD`] voxels apart
 /// there, or clear forever (a tile of sky: its rays are made in blocks,
 /// and none is traced). Never for an orthographic camera, whose rays
 /// share no origin.
 #[cfg(feature = "packets")]
-fn packets_pay(camera: &Camera, t_start: f32) -> bool {
-    let spread = t_start * camera.pixel_spread() * BLOCK_WIDTH as f32;
-    !camera.is_orthographic() && (spread <= MAX_SPREAD || t_start == f32::INFINITY)
+fn packets_pay(camera: &Camera, clear: f32) -> bool {
+    let spread = clear * camera.pixel_spread() * BLOCK_WIDTH as f32;
+    !camera.is_orthographic() && (spread <= MAX_SPREAD || clear == f32::INFINITY)
 }

@@ -150,7 +150,7 @@ mod tests {
                 return Ok(());
             };
             let bits = |r: &Ray| {
-                let (o, d, inv) = r.lanes();
+                let (o, d, inv) = r.vectors();
                 [o, d, inv].map(|v| v.to_array().map(f32::to_bits))
             };
             let corner = (block.0 % (size.0 + 8), block.1 % (size.1 + 8));

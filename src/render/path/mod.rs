@@ -144,12 +144,12 @@ pub(crate) struct Path<'s, 'm> {
 
 impl Path<'_, '_> {
     /// The radiance along one camera ray, which hits nothing before
-    /// `t_start`.
+    /// `clear`.
     fn radiance<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
         camera_ray: &Ray,
-        t_start: f32,
+        clear: f32,
         memory: &mut WalkMemory<'s>,
         rng: &mut Rng,
         stats: &mut RayStats,
@@ -157,7 +157,7 @@ impl Path<'_, '_> {
         let setup = self.setup;
         let mut ray = *camera_ray;
         let mut hit = scene
-            .trace_with(&ray, Reach::after(t_start), memory, None)
+            .trace_with(&ray, Reach::after(clear), memory, None)
             .hit;
         // The path's rays each begin from the hit before them, known to the
         // walk that found it: one memory follows the path (the camera's

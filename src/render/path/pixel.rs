@@ -31,7 +31,7 @@ impl Path<'_, '_> {
         &self,
         scene: &'s S,
         (x, y): (u32, u32),
-        t_start: f32,
+        clear: f32,
         memory: &mut WalkMemory<'s>,
         pixel: &mut PixelSamples,
         round: u32,
@@ -42,7 +42,7 @@ impl Path<'_, '_> {
         let setup = self.setup;
         let per_round = samples_per_round(setup.adaptive.as_ref(), setup.samples);
         let until = u32::from(per_round).saturating_mul(round.max(1));
-        let stats = self.take_samples(scene, (x, y), t_start, memory, pixel, until);
+        let stats = self.take_samples(scene, (x, y), clear, memory, pixel, until);
         Some((self.packed(pixel), stats))
     }
 
@@ -65,7 +65,7 @@ impl Path<'_, '_> {
         &self,
         scene: &'s S,
         (x, y): (u32, u32),
-        t_start: f32,
+        clear: f32,
         memory: &mut WalkMemory<'s>,
         pixel: &mut PixelSamples,
         until: u32,
@@ -96,7 +96,7 @@ impl Path<'_, '_> {
                 event: 0,
             };
             let hits = stats.primary_hits;
-            let radiance = self.radiance(scene, &ray, t_start, memory, &mut rng, &mut stats);
+            let radiance = self.radiance(scene, &ray, clear, memory, &mut rng, &mut stats);
             let missed = stats.primary_hits == hits;
             let radiance = match (missed, background) {
                 (true, Some(color)) => color,

@@ -1,5 +1,5 @@
-//! The kernels a [`Shader`] runs a frame's job with, one per look, and
-//! the one choice between them ([`Shader::dispatch`]): the unshaded look,
+//! The kernels a [`FrameSetup`] runs a frame's job with, one per look, and
+//! the one choice between them ([`FrameSetup::dispatch`]): the unshaded look,
 //! the debug view of the boxes a walk crosses, the lit look (its kernel
 //! in `lit.rs`) and the path tracer for scenes with metal, glass or
 //! emitters (its kernel in `render/path/`, feature `path`).
@@ -16,11 +16,11 @@ use crate::render::rounds::PixelSamples;
 use crate::render::shade::{pack, sky, FLAT_SKY};
 use crate::render::shader::lit::Lit;
 use crate::render::shader::{each_lane, lane_rays, trace_rays};
-use crate::render::shader::{Block, BlockSamples, Job, Kernel, Shader};
+use crate::render::shader::{Block, BlockSamples, FrameSetup, Job, Kernel};
 use crate::render::stats::RayStats;
 use crate::scene::{Hit, Reach, Scene, WalkMemory};
 
-impl Shader<'_, '_> {
+impl FrameSetup<'_, '_> {
     /// Runs `job` with the kernel of this frame's look: the flat look, the
     /// debug view, the path tracer (for the material kinds the plan
     /// found) or the lit look.
@@ -66,7 +66,7 @@ impl Kernel for Path<'_, '_> {
                 None => (u32::MAX, &mut fresh),
             };
             if let Some((rgba, rays)) =
-                self.resume_pixel(scene, pixel, block.t_start, memory, state, round)
+                self.resume_pixel(scene, pixel, block.clear, memory, state, round)
             {
                 put(i, rgba, rays);
             }
@@ -75,7 +75,7 @@ impl Kernel for Path<'_, '_> {
 }
 
 /// The unshaded look: each pixel its camera ray's voxel color.
-pub(super) struct Flat<'s, 'c, 'm>(pub(super) &'s Shader<'c, 'm>);
+pub(super) struct Flat<'s, 'c, 'm>(pub(super) &'s FrameSetup<'c, 'm>);
 
 impl Kernel for Flat<'_, '_, '_> {
     #[cfg(feature = "packets")]
@@ -92,13 +92,13 @@ impl Kernel for Flat<'_, '_, '_> {
         Block {
             corner,
             lanes,
-            t_start,
+            clear,
         }: Block,
         memory: &mut WalkMemory<'s>,
         _: Option<&mut BlockSamples<'_>>,
         mut put: impl FnMut(usize, u32, RayStats),
     ) {
-        let reach = Reach::after(t_start);
+        let reach = Reach::after(clear);
         if lanes.is_power_of_two() {
             // (Too cheap a pixel to fill a block's arrays for.)
             let i = lanes.trailing_zeros() as usize;
@@ -128,7 +128,7 @@ impl Flat<'_, '_, '_> {
 }
 
 /// The debug view: box edges over black voxels and the sky.
-pub(super) struct DebugView<'s, 'c, 'm>(pub(super) &'s Shader<'c, 'm>);
+pub(super) struct DebugView<'s, 'c, 'm>(pub(super) &'s FrameSetup<'c, 'm>);
 
 impl Kernel for DebugView<'_, '_, '_> {
     /// Each lane's camera ray walked from the camera, stopped at the

@@ -16,7 +16,7 @@ use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{face_index, fog_blend, lit, pack, pack_mean, sky};
 use crate::render::shader::{
-    each_lane, lane_rays, trace_rays, Block, BlockSamples, Kernel, Shader,
+    each_lane, lane_rays, trace_rays, Block, BlockSamples, FrameSetup, Kernel,
 };
 use crate::render::stats::RayStats;
 use crate::scene::{Hit, Reach, Scene, WalkMemory};
@@ -31,7 +31,7 @@ use packets::{close, put, Bin};
 /// occlusion, fog and several samples per pixel, each tested once per
 /// sample (a copy of the kernel per set of effects saved under 3% of a
 /// render's instructions: benches/README.md).
-pub(super) struct Lit<'s, 'c, 'm>(pub(super) &'s Shader<'c, 'm>);
+pub(super) struct Lit<'s, 'c, 'm>(pub(super) &'s FrameSetup<'c, 'm>);
 
 impl Kernel for Lit<'_, '_, '_> {
     #[cfg(feature = "packets")]
@@ -50,13 +50,13 @@ impl Kernel for Lit<'_, '_, '_> {
         Block {
             corner,
             lanes,
-            t_start,
+            clear,
         }: Block,
         memory: &mut WalkMemory<'s>,
         _: Option<&mut BlockSamples<'_>>,
         mut put: impl FnMut(usize, u32, RayStats),
     ) {
-        let (one_ray, reach) = (self.one_ray(), Reach::after(t_start));
+        let (one_ray, reach) = (self.one_ray(), Reach::after(clear));
         // A pixel of several samples is their mean, summed as they come.
         let mut means = (!one_ray).then(|| [Mean::default(); N]);
         for s in 0..self.samples() {
@@ -100,7 +100,7 @@ struct Mean {
 impl Mean {
     /// Adds a sample: its color and rays ([`Lit::shade`]).
     #[inline]
-    fn add(&mut self, (color, rays): (U8Vec3, RayStats), shader: &Shader) {
+    fn add(&mut self, (color, rays): (U8Vec3, RayStats), shader: &FrameSetup) {
         if rays.primary_hits > 0 {
             self.sum += color.as_uvec3();
         } else if shader.options.background != Background::Transparent {
@@ -112,7 +112,7 @@ impl Mean {
     /// The pixel of `samples` samples: their rounded mean, in integers,
     /// packed, and their rays.
     #[inline]
-    fn pixel(&self, samples: u32, shader: &Shader) -> (u32, RayStats) {
+    fn pixel(&self, samples: u32, shader: &FrameSetup) -> (u32, RayStats) {
         let transparent = shader.options.background == Background::Transparent;
         let mean_of = |n: u32| ((self.sum + UVec3::splat(n / 2)) / n).as_u8vec3();
         let hits = self.stats.primary_hits as u32;

@@ -1,7 +1,7 @@
-//! The per-frame shader: the effects a frame asked for, resolved once into a
-//! tracer compiled for exactly that set.
+//! A frame's kernels: the frame's setup ([`FrameSetup`]: the effects it
+//! asked for and the light, resolved once), and the kernel of its look.
 //!
-//! [`Shader::dispatch`] picks the look's kernel once per frame and runs a
+//! [`FrameSetup::dispatch`] picks the look's kernel once per frame and runs a
 //! job with it; every render is one job (`render/frame.rs`), so every
 //! target, crop and pass computes pixels with the same code. This file
 //! holds what a frame's pixels need, the traits of jobs and kernels, and
@@ -54,7 +54,7 @@ const EDGE_PIXELS: f32 = 0.75;
 static ALL_DIFFUSE: Materials = Materials::all_diffuse();
 
 /// Everything a frame's pixels need, computed once per frame.
-pub(crate) struct Shader<'c, 'm> {
+pub(crate) struct FrameSetup<'c, 'm> {
     camera: &'c Camera,
     options: RenderOptions,
     /// Brightness out of 256 per face (index [`face_index`]) in full light.
@@ -76,7 +76,7 @@ pub(crate) struct Shader<'c, 'm> {
     materials: PhantomData<SceneMaterials<'m>>,
 }
 
-impl<'c, 'm> Shader<'c, 'm> {
+impl<'c, 'm> FrameSetup<'c, 'm> {
     /// The shader of `options` for `camera`'s frame of a scene with
     /// `materials` (`None`: all diffuse). Settings
     /// [`RenderOptions::validate`] rejects are turned off, never a panic.
@@ -102,7 +102,7 @@ impl<'c, 'm> Shader<'c, 'm> {
         let _ = materials;
         let options = options.sanitized();
         let (light, shadowed, sunlit, sun) = face_weights(options.sun);
-        Shader {
+        FrameSetup {
             camera,
             options,
             light,
@@ -134,12 +134,13 @@ pub(crate) trait Job {
 /// The pixels a kernel makes in one call: the lanes set in `lanes` of
 /// the 8x4 block from `corner` (lane `i` at [`block_pixel`]`(corner, i)`;
 /// a lone pixel is lane 0 alone). Their camera rays hit nothing before
-/// `t_start` (0 when unknown), so they may start walking there.
+/// their clear distance `clear` (0 when unknown), so they may start
+/// walking there.
 #[derive(Clone, Copy)]
 pub(crate) struct Block {
     pub(crate) corner: (u32, u32),
     pub(crate) lanes: u32,
-    pub(crate) t_start: f32,
+    pub(crate) clear: f32,
 }
 
 /// The samples a block's pixels keep between rounds of a render in
@@ -169,7 +170,7 @@ pub(crate) trait Kernel: Sync {
     /// first, made in arrays of `N` lanes: [`crate::PACKET`] for an 8x4 block,
     /// 1 for a lone pixel (lane 0 alone), so that a lone pixel fills no
     /// block's arrays. Its walks may begin from what the previous block's left in
-    /// `memory`; a pixel is the same for any `t_start` it is given and
+    /// `memory`; a pixel is the same for any `clear` it is given and
     /// any memory. `samples` is `None` in one pass (each pixel takes all
     /// its samples); in a render in rounds, which only the path tracer
     /// takes ([`Kernel::RESUMES`]), it holds each lane's samples so far,
@@ -266,7 +267,7 @@ fn trace_rays<'s, S: Scene + ?Sized, const N: usize>(
     }
 }
 
-impl Shader<'_, '_> {
+impl FrameSetup<'_, '_> {
     /// The packed pixel of a primary ray that missed: `sky` is the sky's
     /// color in this look.
     #[inline]

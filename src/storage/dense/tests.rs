@@ -124,7 +124,7 @@ fn the_dense_walk_finds_the_single_step_walks_hit() {
 /// edge-case rays above and boxes around them.
 #[test]
 fn the_entry_is_the_single_step_walks_entry() {
-    use crate::storage::walk::{Begin, Lanes, Walk};
+    use crate::storage::walk::{Begin, Walk, WalkRay};
 
     let mut rng = Rng(0x2545_F491_4F6C_DD1D);
     let (mut entered, mut from_outside) = (0, 0);
@@ -142,7 +142,7 @@ fn the_entry_is_the_single_step_walks_entry() {
         let region = IAabb::new(lo, lo + size);
         let ray = ray(&mut rng, &region);
         let walk = Walk::start(&ray, &region);
-        let begun = match Lanes::of(&ray).begin(&ray, &region, 0.0) {
+        let begun = match WalkRay::of(&ray).begin(&ray, &region, 0.0) {
             Begin::At { cell, key } => Some((cell.as_ivec3(), key)),
             Begin::Misses => None,
             Begin::Later(_) => panic!("ray {i}: begun later than 0"),

@@ -1,5 +1,5 @@
 //! The dense array's walk: the shared cell walk of `storage/walk/`,
-//! begun where every walk begins (`Lanes::begin`), then stepped by a loop
+//! begun where every walk begins (`WalkRay::begin`), then stepped by a loop
 //! specialised for one flat array.
 //!
 //! The loop keeps the walk's state in scalar registers, four per axis:
@@ -26,7 +26,7 @@ use glam::{BVec3A, IVec3, Vec3A};
 use crate::geom::{IAabb, Ray};
 use crate::scene::{Hit, Traced};
 use crate::storage::dense::DenseScene;
-use crate::storage::walk::{Begin, Key, Lanes, Walk};
+use crate::storage::walk::{Begin, Key, Walk, WalkRay};
 use crate::voxel::Palette;
 
 /// 1.5 * 2^23: added to a float below 2^22 in size, a sum whose last
@@ -74,11 +74,11 @@ impl<B: AsRef<[u8]>> DenseScene<B> {
         if region.min.cmpge(region.max).any() {
             return MISS;
         }
-        let lanes = Lanes::of(ray);
-        let Begin::At { cell: cellf, key } = lanes.begin(ray, region, 0.0) else {
+        let walker = WalkRay::of(ray);
+        let Begin::At { cell: cellf, key } = walker.begin(ray, region, 0.0) else {
             return MISS;
         };
-        let (moving, down) = (lanes.moving, lanes.start.down);
+        let (moving, down) = (walker.moving, walker.start.down);
         // (A cell of the region: within +-2^22.)
         let cell = whole_numbers(cellf);
         let cells = self.cells.as_ref();
@@ -95,10 +95,10 @@ impl<B: AsRef<[u8]>> DenseScene<B> {
         let (lo, hi) = (region.min.as_vec3a(), region.max.as_vec3a());
         let dir = Vec3A::select(down, Vec3A::NEG_ONE, Vec3A::ONE);
         let exit = Vec3A::select(down, cellf, cellf + 1.0);
-        let next_t = (exit - lanes.origin) * lanes.inv_dir;
+        let next_t = (exit - walker.origin) * walker.inv_dir;
         let next_t = Vec3A::select(moving, next_t, Vec3A::INFINITY);
-        let origin = Vec3A::select(moving, lanes.origin, Vec3A::ZERO);
-        let inv_dir = Vec3A::select(moving, lanes.inv_dir, Vec3A::INFINITY);
+        let origin = Vec3A::select(moving, walker.origin, Vec3A::ZERO);
+        let inv_dir = Vec3A::select(moving, walker.inv_dir, Vec3A::INFINITY);
         let step = Vec3A::select(moving, dir, Vec3A::ZERO);
         let plane = Vec3A::select(moving, exit + dir, Vec3A::ONE);
         let after = (plane - origin) * inv_dir;

@@ -7,7 +7,7 @@
 //! and the voxel lies in the box. That distance is at least the box's from
 //! the apex, and at least its gap on an axis over the steepest the
 //! frustum's rays run along that axis. The rays
-//! then begin their exact walks there (`Lanes::begin`) and find the same
+//! then begin their exact walks there (`WalkRay::begin`) and find the same
 //! hit as from the camera, without repeating the descent through the empty
 //! space the whole tile shares (the idea of Laine & Karras 2010, section 5).
 //!

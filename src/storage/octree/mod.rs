@@ -6,7 +6,7 @@
 //! questions (`Scene`). [`node`] is the node layout; [`build`] fills it
 //! from a source (in caller buffers or fallible vectors, and on the rayon
 //! pool in [`build_par`]), and [`trace`] walks it: the shared cell walk
-//! (see `storage/walk/`, asked in four-lane form through `Lanes`), sped
+//! (see `storage/walk/`, asked in four-lane form through `WalkRay`), sped
 //! up by jumping over every empty node in one move. Because a jump lands
 //! exactly where single steps would, the octree returns the same hits as
 //! the dense array, bit for bit.

@@ -86,7 +86,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         // A camera's pixels share their origin: their crossings take one
         // subtraction per plane, not one per lane. Shadow rays' first and
         // last lanes seldom do.
-        let origin = |lane: u32| rays[lane as usize].lanes().0.to_array().map(f32::to_bits);
+        let origin = |lane: u32| rays[lane as usize].vectors().0.to_array().map(f32::to_bits);
         if origin(lanes.trailing_zeros()) == origin(31 - lanes.leading_zeros()) {
             let (packet, taken, one_origin) = Packet::<Vec3A>::of(rays, lanes, reach);
             if one_origin {

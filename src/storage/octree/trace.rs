@@ -3,9 +3,9 @@
 //! The tracer holds a position: the ray is, at the key it entered by, in a
 //! cube of the tree's grid. Inside a branch it finds the child holding the
 //! ray by comparing the midplanes' crossing keys with that key
-//! (`Lanes::upper_sides`); an empty cube, whether an absent child or an
+//! (`WalkRay::upper_sides`); an empty cube, whether an absent child or an
 //! empty 2x2x2 group of a brick, it leaves at the earliest key of its far
-//! planes ([`Lanes::exit_of`]), stepping to the neighbouring cube of the same
+//! planes ([`WalkRay::exit_of`]), stepping to the neighbouring cube of the same
 //! size. Both questions use the crossings and the order single steps use,
 //! so the hit is the dense array's, bit for bit, without ever estimating a
 //! cell coordinate.
@@ -24,7 +24,7 @@ use crate::storage::octree::grid::{changed_bits, cube_at, pow2, spread, whole};
 use crate::storage::octree::memory::PATH;
 use crate::storage::octree::node::{child_rank, BrickMaterials, Node, NodeKind, BRICK, GROUP};
 use crate::storage::octree::OctreeScene;
-use crate::storage::walk::{Begin, Key, Lanes, Start};
+use crate::storage::walk::{Begin, Key, Start, WalkRay};
 
 /// The cube of side 2^log at the corner `cube` (exact floats) as the box
 /// a visitor is shown.
@@ -42,7 +42,7 @@ const TWO: Vec3A = Vec3A::splat(2.0);
 
 impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// The box-at-a-time walk through `region` (the occupied box, or the
-    /// whole volume) from where the ray is at `t_start` (0: its start),
+    /// whole volume) from where the ray is at `clear` (0: its start),
     /// showing `visit` each empty cube it leaves and giving up once it
     /// enters a cube farther than `t_max`, its path kept in `memory`: it
     /// begins at the deepest remembered node that still holds its start
@@ -64,10 +64,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         mut visit: V,
         memory: &mut WalkMemory,
     ) -> Traced {
-        let Reach {
-            clear: t_start,
-            max: t_max,
-        } = reach;
+        let Reach { clear, max: t_max } = reach;
         let missed = Traced {
             hit: None,
             steps: 0,
@@ -75,23 +72,23 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         if region.is_empty() {
             return missed;
         }
-        if t_start == f32::INFINITY {
+        if clear == f32::INFINITY {
             return missed;
         }
         // Rays sharing an origin and a direction class (a camera's) share
         // their start cell: once a walk has found it solid, the memory
         // answers the rest without a walk (a camera inside a voxel).
         let owner = self as *const Self as usize;
-        let from_start = t_start == 0.0;
+        let from_start = clear == 0.0;
         if let (true, Some(seen)) = (from_start, &memory.solid_start) {
             if seen.owner == owner && seen.key == SolidStart::key_of(ray, Start::class_of(ray)) {
                 let hit = Some(seen.hit).filter(|h| h.t <= t_max);
                 return Traced { hit, steps: 0 };
             }
         }
-        let lanes = Lanes::of(ray);
+        let walker = WalkRay::of(ray);
         let (region_lo, region_hi) = (region.min.as_vec3a(), region.max.as_vec3a());
-        let leaves_region = lanes.exit_of(region_lo, region_hi);
+        let leaves_region = walker.exit_of(region_lo, region_hi);
         let stays_before = leaves_region.t.min(t_max);
         let min = self.bounds.min;
         let min_f = min.as_vec3a();
@@ -101,14 +98,11 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         // Where the walk begins: in the cell it enters by, or at a clear
         // distance past its entry at that key alone, near the point's cell
         // (clamped into the region: only the memory is asked about it).
-        let (mut key, cell, placed) = match lanes.begin(ray, &region, t_start) {
+        let (mut key, cell, placed) = match walker.begin(ray, &region, clear) {
             Begin::Misses => return missed,
             Begin::At { cell, key } => (key, cell, None),
             Begin::Later(placed) => {
-                let later = Key {
-                    t: t_start,
-                    axis: 0,
-                };
+                let later = Key { t: clear, axis: 0 };
                 let cell = placed.point.floor().clamp(region_lo, region_hi - 1.0);
                 (later, cell, Some(placed))
             }
@@ -130,7 +124,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         let (mut at, mut known_log) = (cell, 0);
         if let Some(placed) = placed {
             let hi = node_at + pow2(root_log - depth as u32);
-            if !(placed.surely_in(node_at, hi) || lanes.holds(node_at, hi, key)) {
+            if !(placed.surely_in(node_at, hi) || walker.holds(node_at, hi, key)) {
                 (depth, node, node_at) = (0, self.root, min_f);
             }
             (at, known_log) = (node_at, root_log - depth as u32);
@@ -158,11 +152,11 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         // plane the origin lies on, which the start rule has crossed.)
         macro_rules! end_hit {
             ($at:expr, $pos:expr, $material:expr) => {{
-                let traced = self.hit(&lanes, key, $pos, $material, steps, placed_key);
+                let traced = self.hit(&walker, key, $pos, $material, steps, placed_key);
                 match traced.hit {
                     Some(hit) if hit.t > t_max => end!($at, Traced { hit: None, steps }),
                     Some(hit) if from_start && hit.t == 0.0 => {
-                        let key = SolidStart::key_of(ray, lanes.start.class());
+                        let key = SolidStart::key_of(ray, walker.start.class());
                         memory.solid_start = Some(SolidStart { owner, key, hit });
                     }
                     _ => {}
@@ -179,7 +173,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                         let half_log = root_log - depth as u32 - 1;
                         let halves = (node_half, half_log);
                         let (child, octant) =
-                            lanes.half_of(key, node_at, halves, &mut at, &mut known_log);
+                            walker.half_of(key, node_at, halves, &mut at, &mut known_log);
                         if children & (1 << octant) == 0 {
                             break (child, half_log);
                         }
@@ -198,7 +192,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                         while known_log > 0 {
                             let half_log = known_log - 1;
                             let halves = (Vec3A::splat(pow2(half_log)), half_log);
-                            lanes.half_of(key, at, halves, &mut at, &mut known_log);
+                            walker.half_of(key, at, halves, &mut at, &mut known_log);
                         }
                         end_hit!(at, min + whole((at - min_f).into()), material);
                     }
@@ -207,13 +201,18 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                         materials,
                     } => loop {
                         let (group, upper) =
-                            lanes.half_of(key, node_at, (TWO, 1), &mut at, &mut known_log);
+                            walker.half_of(key, node_at, (TWO, 1), &mut at, &mut known_log);
                         let group_bit = spread(upper) << 1;
                         let (cube, log) = if occupancy & GROUP << group_bit == 0 {
                             (group, 1)
                         } else {
-                            let (cell, upper) =
-                                lanes.half_of(key, group, (Vec3A::ONE, 0), &mut at, &mut known_log);
+                            let (cell, upper) = walker.half_of(
+                                key,
+                                group,
+                                (Vec3A::ONE, 0),
+                                &mut at,
+                                &mut known_log,
+                            );
                             let bit = group_bit | spread(upper);
                             if occupancy >> bit & 1 != 0 {
                                 let material = self.brick_material(occupancy, materials, bit);
@@ -225,8 +224,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                         // before both limits, is taken here: the brick
                         // still holds the position. Else the general move.
                         let side = pow2(log);
-                        let exit = lanes.exit_of(cube, cube + side);
-                        let next = lanes.neighbour(cube, side, exit.axis);
+                        let exit = walker.exit_of(cube, cube + side);
+                        let next = walker.neighbour(cube, side, exit.axis);
                         let in_brick = next.cmpge(node_at) & next.cmplt(node_at + BRICK as f32);
                         if !(exit.t < stays_before && in_brick.all()) {
                             break 'descent (cube, log);
@@ -243,13 +242,13 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
             };
             // Leave the empty cube through its first far-plane crossing.
             let side = pow2(empty_log);
-            let exit = lanes.exit_of(cube, cube + side);
+            let exit = walker.exit_of(cube, cube + side);
             steps += 1;
             if !visit(cube_box(cube, empty_log)) {
                 end!(cube, Traced { hit: None, steps });
             }
             let axis = exit.axis as usize;
-            let next = lanes.neighbour(cube, side, exit.axis);
+            let next = walker.neighbour(cube, side, exit.axis);
             // A crossing before both the caller's reach and the region's
             // exit stays inside: on the exit's own axis too, since crossing
             // times grow with the plane. Else the slower questions.
@@ -267,8 +266,8 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
                 // the region's face is not left yet; its cells past the
                 // face are empty anyway.
                 let left = if leaves_region.axis == exit.axis {
-                    let beyond = (lanes.start.up & next.cmpge(region_hi))
-                        | (lanes.start.down & (next + side).cmple(region_lo));
+                    let beyond = (walker.start.up & next.cmpge(region_hi))
+                        | (walker.start.down & (next + side).cmple(region_lo));
                     beyond.bitmask() >> axis & 1 != 0
                 } else {
                     leaves_region.lt(exit)
@@ -322,7 +321,7 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
     /// crossing) reports the crossing that entered that cell.
     fn hit(
         &self,
-        lanes: &Lanes,
+        walker: &WalkRay,
         key: Key,
         pos: IVec3,
         material: u8,
@@ -330,11 +329,11 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> OctreeScene<N, M> {
         placed_key: Option<Key>,
     ) -> Traced {
         let key = if placed_key == Some(key) {
-            lanes.entry_key_of(pos.as_vec3a())
+            walker.entry_key_of(pos.as_vec3a())
         } else {
             key
         };
-        let (face, t) = key.entered(lanes.start.up);
+        let (face, t) = key.entered(walker.start.up);
         let hit = Hit::from_palette(&self.palette, pos, face, t, material);
         Traced { hit, steps }
     }

@@ -1,5 +1,5 @@
-//! Where a walk begins, on [`Lanes`]: the one route both storages take
-//! into the box they walk ([`Lanes::begin`]). A ray that starts inside
+//! Where a walk begins, on [`WalkRay`]: the one route both storages take
+//! into the box they walk ([`WalkRay::begin`]). A ray that starts inside
 //! begins in its start cell; one from outside in the cell it enters the
 //! box by, found by a guess that two crossings per axis confirm, or by
 //! [`Walk::start`] itself when they do not; one that may begin at a clear
@@ -10,12 +10,12 @@ use glam::{BVec3A, Vec3A};
 
 use crate::geom::{IAabb, Ray};
 use crate::storage::walk::placed::Placed;
-use crate::storage::walk::{latest, Key, Lanes, Walk, EXACT};
+use crate::storage::walk::{latest, Key, Walk, WalkRay, EXACT};
 
 /// Lane indices as floats, to turn an axis into a lane mask.
 pub(crate) const AXES: Vec3A = Vec3A::new(0.0, 1.0, 2.0);
 
-/// Where the walk of a box begins ([`Lanes::begin`]).
+/// Where the walk of a box begins ([`WalkRay::begin`]).
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum Begin {
     /// In the cell at `cell` (exact floats) of the box, entered by the
@@ -30,8 +30,8 @@ pub(crate) enum Begin {
     Misses,
 }
 
-impl Lanes {
-    /// Where the walk of `ray` (these are its lanes) through `region`
+impl WalkRay {
+    /// Where the walk of `ray` (this is its walker) through `region`
     /// begins when the ray is known to hit nothing before `clear` (0:
     /// from its start).
     ///
@@ -91,7 +91,7 @@ impl Lanes {
         let axis = Vec3A::splat(f32::from(enters.axis));
         let on_entry_axis = AXES.cmpeq(axis);
         if !origin.abs().cmplt(Vec3A::splat(EXACT)).all() || (inside & on_entry_axis).any() {
-            return Lanes::begin_by_steps(ray, region);
+            return WalkRay::begin_by_steps(ray, region);
         }
         // The first cell from the near side, and one past the far one.
         let near = Vec3A::select(up, lo, hi - 1.0);
@@ -110,7 +110,7 @@ impl Lanes {
         let not_before = guess.cmpeq(beyond) | !exits_before(guess);
         let checked: BVec3A = (after_previous & not_before) | !self.moving | on_entry_axis;
         if !checked.all() {
-            return Lanes::begin_by_steps(ray, region);
+            return WalkRay::begin_by_steps(ray, region);
         }
         let cell = Vec3A::select(
             on_entry_axis,
@@ -125,8 +125,8 @@ impl Lanes {
         }
     }
 
-    /// [`Lanes::begin`] at the entry, by [`Walk::start`]: what decides
-    /// where the lanes cannot. Kept out of line: few rays come here.
+    /// [`WalkRay::begin`] at the entry, by [`Walk::start`]: what decides
+    /// where the walker cannot. Kept out of line: few rays come here.
     #[inline(never)]
     fn begin_by_steps(ray: &Ray, region: &IAabb) -> Begin {
         match Walk::start(ray, region) {

@@ -15,9 +15,9 @@
 //! The walk's state after any number of steps is exactly "the cell reached
 //! after processing every crossing in key order up to the current one". The
 //! dense backend steps one cell at a time. The octree moves from box to box:
-//! `Lanes::exit_of` is the key at which the ray leaves an empty box (the
+//! `WalkRay::exit_of` is the key at which the ray leaves an empty box (the
 //! earliest of its far-plane crossings, which single steps would also reach
-//! there), and `Lanes::upper_sides` says which half of a box the ray is in
+//! there), and `WalkRay::upper_sides` says which half of a box the ray is in
 //! at a key, from the same crossings, the same start rule and the same
 //! order. Both backends therefore find the same first solid cell, face and
 //! `t`, bit for bit.
@@ -32,8 +32,8 @@
 //! # Where a walk begins
 //! Three routes, each in one place: the start rule and the scalar walk's
 //! entry into its volume, the definition ([`Start`], [`Walk::start`],
-//! `start.rs`); the route both storages take, on lanes, from the start or
-//! from a clear distance ([`Lanes::begin`], `begin.rs`, with [`placed`]);
+//! `start.rs`); the route both storages take, in SIMD form, from the start or
+//! from a clear distance ([`WalkRay::begin`], `begin.rs`, with [`placed`]);
 //! and the octree's descent from the node a `WalkMemory` recalls
 //! (`octree/memory.rs`).
 //!
@@ -47,15 +47,15 @@ use glam::{BVec3A, IVec3, Vec3, Vec3A};
 use crate::geom::{Face, IAabb};
 
 mod begin;
-mod lanes;
 pub(crate) mod placed;
 mod start;
 #[cfg(test)]
 pub(crate) mod test_rays;
+mod walk_ray;
 
 pub(crate) use begin::{Begin, AXES};
-pub(crate) use lanes::Lanes;
 pub(crate) use start::{Start, EXACT};
+pub(crate) use walk_ray::WalkRay;
 
 /// A crossing's place in the ray's visiting order: by time, then by axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -140,7 +140,7 @@ pub(crate) fn latest(t: Vec3A) -> Key {
 /// A ray's walk through the cells of one volume.
 #[derive(Clone, Debug)]
 pub(crate) struct Walk {
-    // The ray's, as the lanes it keeps them in.
+    // The ray's, as the walker keeps them.
     origin: Vec3A,
     dir: Vec3A,
     inv_dir: Vec3A,
@@ -231,7 +231,7 @@ impl Walk {
     /// inside it: the earliest key among the far planes of the moving axes
     /// (`+inf` if none is ever reached). The same arithmetic as single steps,
     /// on three lanes at once: the definition the octree's four-lane
-    /// `Lanes::exit_of` is tested against.
+    /// `WalkRay::exit_of` is tested against.
     #[cfg(test)]
     pub(crate) fn exit_of(&self, lo: IVec3, hi: IVec3) -> Key {
         let far = IVec3::select(self.step.cmpgt(IVec3::ZERO), hi, lo).as_vec3a();

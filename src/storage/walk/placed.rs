@@ -67,9 +67,9 @@ mod tests {
     use crate::storage::walk::test_rays::Rng;
     use crate::storage::walk::{Key, Start, Walk};
 
-    /// The placed point as `Lanes::begin` computes it.
+    /// The placed point as `WalkRay::begin` computes it.
     fn placed_at(ray: &Ray, t: f32) -> Placed {
-        let (origin, dir, _) = ray.lanes();
+        let (origin, dir, _) = ray.vectors();
         Placed::at(origin, dir, Start::of(ray).moving(), t)
     }
 

@@ -16,7 +16,7 @@ impl Walk {
     /// 2005 in key form: the ray is inside once it has crossed the near plane
     /// of every axis, and misses if it crosses a far plane first.
     pub(crate) fn start(ray: &Ray, bounds: &IAabb) -> Option<Walk> {
-        let (origin, dir, inv_dir) = ray.lanes();
+        let (origin, dir, inv_dir) = ray.vectors();
         let begins = Start::of(ray);
         let mut walk = Walk {
             origin,
@@ -166,7 +166,7 @@ impl Start {
     /// exact integers), else by saturating integer truncation.
     #[inline]
     pub(crate) fn of(ray: &Ray) -> Start {
-        let (origin, _, _) = ray.lanes();
+        let (origin, _, _) = ray.vectors();
         let (up, down) = directions(ray);
         let moving = up | down;
         if origin.abs().cmplt(Vec3A::splat(EXACT)).all() {
@@ -256,7 +256,7 @@ impl Start {
 /// infinite reciprocal (a subnormal component) counts as not moving.
 #[inline]
 fn directions(ray: &Ray) -> (BVec3A, BVec3A) {
-    let (_, dir, inv_dir) = ray.lanes();
+    let (_, dir, inv_dir) = ray.vectors();
     let moving = dir.cmpne(Vec3A::ZERO) & inv_dir.abs().cmplt(Vec3A::INFINITY);
     (
         moving & dir.cmpgt(Vec3A::ZERO),

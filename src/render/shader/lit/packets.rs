@@ -61,7 +61,7 @@ impl Bin {
 /// octant: that bin when it is full, to be traced.
 #[inline]
 pub(super) fn put(bins: &mut [Bin; 8], ray: Ray, lane: usize) -> Option<&mut Bin> {
-    let bin = &mut bins[octant(ray.lanes().1)];
+    let bin = &mut bins[octant(ray.vectors().1)];
     (bin.rays[bin.len], bin.owners[bin.len]) = (ray, lane as u8);
     bin.len += 1;
     (bin.len == PACKET).then_some(bin)

@@ -46,7 +46,7 @@ impl<O: Origins> Packet<O> {
     #[inline]
     pub(super) fn of(rays: &[Ray; PACKET], lanes: u32, reach: Reach) -> (Self, u32, bool) {
         let first = (lanes.trailing_zeros() as usize).min(PACKET - 1);
-        let (first_origin, first_dir, _) = rays[first].lanes();
+        let (first_origin, first_dir, _) = rays[first].vectors();
         let down = first_dir.cmplt(Vec3A::ZERO);
         let mut origin = [[Vec4::ZERO; PACKET / 4]; 3];
         let mut inv = [[Vec4::ZERO; PACKET / 4]; 3];
@@ -62,9 +62,9 @@ impl<O: Origins> Packet<O> {
                 [rows.x_axis, rows.y_axis, rows.z_axis]
             };
             let (o, dir, v) = (
-                per_axis(|r| r.lanes().0),
-                per_axis(|r| r.lanes().1),
-                per_axis(|r| r.lanes().2),
+                per_axis(|r| r.vectors().0),
+                per_axis(|r| r.vectors().1),
+                per_axis(|r| r.vectors().2),
             );
             let (mut ok, mut same) = (BVec4A::splat(true), 0xf);
             for axis in 0..3 {

@@ -1,4 +1,4 @@
-//! `Lanes`: a ray's walk (`storage/walk/`) in four-lane form, the one
+//! `WalkRay`: a ray's walk (`storage/walk/`) in SIMD form, the one
 //! form every storage's walk keeps its ray in. Built once per ray from the
 //! ray and its [`Start`]; it answers the questions a walk asks with
 //! exactly the crossings, start rule and order of [`Walk`]: where its walk
@@ -12,9 +12,9 @@ use crate::geom::Ray;
 use crate::storage::walk::Walk;
 use crate::storage::walk::{latest, Key, Start, AXES};
 
-/// A ray's walk on four lanes: the ray, where it starts, and its steps.
+/// A ray's walk in SIMD vectors: the ray, where it starts, and its steps.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Lanes {
+pub(crate) struct WalkRay {
     pub(crate) origin: Vec3A,
     pub(crate) dir: Vec3A,
     pub(crate) inv_dir: Vec3A,
@@ -27,15 +27,15 @@ pub(crate) struct Lanes {
     pub(crate) moving: BVec3A,
 }
 
-impl Lanes {
-    /// The lanes of the walk of `ray`: its start ([`Start::of`]) and its
+impl WalkRay {
+    /// The walk of `ray`: its start ([`Start::of`]) and its
     /// crossings.
     #[inline]
-    pub(crate) fn of(ray: &Ray) -> Lanes {
-        let (origin, dir, inv_dir) = ray.lanes();
+    pub(crate) fn of(ray: &Ray) -> WalkRay {
+        let (origin, dir, inv_dir) = ray.vectors();
         let start = Start::of(ray);
         let one = |mask| Vec3A::select(mask, Vec3A::ONE, Vec3A::ZERO);
-        Lanes {
+        WalkRay {
             origin,
             dir,
             inv_dir,
@@ -63,7 +63,7 @@ impl Lanes {
     }
 
     /// Whether the cell the walk is in at `key` lies in the box `[lo, hi)`
-    /// (exact floats), by [`Lanes::upper_sides`] of its faces, for a `key`
+    /// (exact floats), by [`WalkRay::upper_sides`] of its faces, for a `key`
     /// that is no crossing of those planes.
     #[inline]
     pub(crate) fn holds(&self, lo: Vec3A, hi: Vec3A, key: Key) -> bool {
@@ -161,7 +161,7 @@ impl Lanes {
 mod tests {
     use glam::Vec3A;
 
-    use super::Lanes;
+    use super::WalkRay;
     use crate::storage::walk::test_rays::Rng;
     use crate::storage::walk::{Begin, Key, Walk};
 
@@ -170,7 +170,7 @@ mod tests {
         (b.min.as_vec3a(), b.max.as_vec3a())
     }
 
-    /// A walk begins, on lanes, where single steps from the start are: at
+    /// A walk begins, in SIMD form, where single steps from the start are: at
     /// 0 in the walk's entry cell with its key (from inside and outside);
     /// at a clear distance, there when the walk has entered the box before
     /// it and not left, else at the entry; nowhere when the walk misses
@@ -184,7 +184,7 @@ mod tests {
             let Some(ray) = rng.ray_at(bounds) else {
                 continue;
             };
-            let lanes = Lanes::of(&ray);
+            let walker = WalkRay::of(&ray);
             let (lo, hi) = lanes_of(bounds);
             let walk = Walk::start(&ray, &bounds);
             let t = match rng.next() % 3 {
@@ -196,7 +196,7 @@ mod tests {
             }
             let key = Key { t, axis: 0 };
             let stepped = Walk::at(&ray, &bounds, key);
-            match lanes.begin(&ray, &bounds, t) {
+            match walker.begin(&ray, &bounds, t) {
                 Begin::At { cell, key: entered } => {
                     let walk = walk.as_ref().expect("the walk enters the box");
                     let walks_at = (walk.cell(), walk.key());
@@ -216,7 +216,7 @@ mod tests {
                 Begin::Misses => assert!(stepped.is_none(), "{ray:?} {bounds:?} {t}"),
             }
             if let Some(walk) = walk {
-                assert_eq!(lanes.exit_of(lo, hi), walk.exit_of(bounds.min, bounds.max));
+                assert_eq!(walker.exit_of(lo, hi), walk.exit_of(bounds.min, bounds.max));
             }
         }
         assert!(
@@ -226,7 +226,7 @@ mod tests {
     }
 
     /// Every cell a walk reaches by single steps is entered at the key the
-    /// lanes compute for it, and the face and distance the walk reports.
+    /// walker computes for it, and the face and distance the walk reports.
     #[test]
     fn entry_keys_agree_with_single_steps() {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
@@ -236,14 +236,14 @@ mod tests {
             let Some(ray) = rng.ray_at(bounds) else {
                 continue;
             };
-            let lanes = Lanes::of(&ray);
+            let walker = WalkRay::of(&ray);
             let Some(mut walk) = Walk::start(&ray, &bounds) else {
                 continue;
             };
             loop {
-                let key = lanes.entry_key_of(walk.cell().as_vec3a());
+                let key = walker.entry_key_of(walk.cell().as_vec3a());
                 assert_eq!(key, walk.key(), "{ray:?} {bounds:?} {:?}", walk.cell());
-                assert_eq!(key.entered(lanes.start.up), walk.entry());
+                assert_eq!(key.entered(walker.start.up), walk.entry());
                 cells += 1;
                 if !walk.step() {
                     break;
@@ -265,7 +265,7 @@ mod tests {
             let Some(ray) = rng.ray_at(bounds) else {
                 continue;
             };
-            let lanes = Lanes::of(&ray);
+            let walker = WalkRay::of(&ray);
             // Random, or exactly a crossing (the key (t, x) ties with it),
             // or next to one.
             let t = rng.distance_along(&ray);
@@ -282,7 +282,7 @@ mod tests {
                 let contains = cell.cmpge(lo).all() && cell.cmplt(hi).all();
                 let (lo_f, hi_f) = (lo.as_vec3a(), hi.as_vec3a());
                 assert_eq!(
-                    lanes.holds(lo_f, hi_f, key),
+                    walker.holds(lo_f, hi_f, key),
                     contains,
                     "{ray:?} {t} {lo} {hi}"
                 );
