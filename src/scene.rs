@@ -257,7 +257,8 @@ pub trait Scene {
     /// what [`Scene::trace_with`] gives each, found in a packet where the
     /// storage can ([`Scene::trace_packet`]), the rest one by one, their
     /// walks beginning from `memory`. A reach clear forever hits nothing:
-    /// no ray is traced.
+    /// no ray is traced. Returns the lanes answered without a walk of
+    /// their own (by the packet, or by a reach clear forever).
     #[inline]
     fn trace_lanes<'s>(
         &'s self,
@@ -266,7 +267,7 @@ pub trait Scene {
         reach: Reach,
         memory: &mut WalkMemory<'s>,
         hits: &mut [Option<Hit>; PACKET],
-    ) {
+    ) -> u32 {
         let mut alone = lanes;
         if reach.clear == f32::INFINITY {
             alone = 0;
@@ -278,12 +279,14 @@ pub trait Scene {
         } else if lanes != 0 {
             alone &= !self.trace_packet(rays, lanes, reach, hits);
         }
+        let together = lanes & !alone;
         // The lanes the packet left, lowest first.
         while alone != 0 {
             let i = alone.trailing_zeros() as usize;
             alone &= alone - 1;
             hits[i] = self.trace_with(&rays[i], reach, memory, None).hit;
         }
+        together
     }
 
     /// Bytes of voxel storage this scene holds (arrays and palette).

@@ -94,8 +94,16 @@ fn resolve(path: &[String], modules: &BTreeMap<String, PathBuf>) -> Option<Strin
 /// Imports between modules: module -> the modules it uses (not itself, and
 /// not the crate root, which only declares and re-exports).
 fn imports() -> BTreeMap<String, BTreeSet<String>> {
+    let (graph, through_root) = read_imports();
+    assert!(through_root.is_empty(), "{}", through_root.join("\n"));
+    graph
+}
+
+/// The import graph, and every path that goes through the crate root's
+/// re-exports instead of the module that defines it.
+fn read_imports() -> (BTreeMap<String, BTreeSet<String>>, Vec<String>) {
     let modules = modules();
-    let mut graph = BTreeMap::new();
+    let (mut graph, mut through_root) = (BTreeMap::new(), Vec::new());
     for (module, path) in &modules {
         if module.is_empty() {
             continue;
@@ -103,29 +111,42 @@ fn imports() -> BTreeMap<String, BTreeSet<String>> {
         let mut uses = BTreeSet::new();
         for p in crate_paths(&code(path)) {
             match resolve(&p, &modules) {
-                Some(target) => {
-                    if &target != module {
-                        uses.insert(target);
-                    }
+                Some(target) if &target != module => {
+                    uses.insert(target);
                 }
-                None => panic!(
+                Some(_) => {}
+                None => through_root.push(format!(
                     "{}: `crate::{}` goes through the crate root's re-exports; \
                      import it from the module that defines it",
                     path.display(),
                     p.join("::")
-                ),
+                )),
             }
         }
         graph.insert(module.clone(), uses);
     }
-    graph
+    (graph, through_root)
 }
 
 #[test]
 fn no_module_imports_through_the_crate_root() {
-    // `imports` panics, naming the file, on the first such path.
-    let graph = imports();
-    assert!(graph.len() > 20, "read only {} modules", graph.len());
+    let (graph, through_root) = read_imports();
+    assert_eq!(through_root, Vec::<String>::new());
+    // The reader found the imports it must: a few edges every layout of
+    // this crate has, so that an empty or half-read graph fails here.
+    let edge = |from: &str, to: &str| graph.get(from).is_some_and(|uses| uses.contains(to));
+    for (from, to) in [
+        ("render::frame", "render::tiles"),
+        ("render::tiles", "render::shader"),
+        ("storage::octree::trace", "storage::walk"),
+        ("storage::dense::walk", "storage::walk"),
+        ("source::terrain", "source::noise"),
+    ] {
+        assert!(
+            edge(from, to),
+            "{from} does not import {to}: the reader missed it"
+        );
+    }
 }
 
 #[test]
@@ -161,14 +182,19 @@ fn no_import_loops() {
 }
 
 /// The stage of a module: the shared vocabulary at the root, then the
-/// pipeline's folders in the order data flows through them.
-fn stage(module: &str) -> usize {
-    match module.split("::").next().unwrap() {
-        "source" => 1,
-        "storage" => 2,
-        "render" => 3,
-        "io" => 4,
-        _ => 0,
+/// pipeline's folders in the order data flows through them; inside
+/// `storage`, the walk both storages share before either storage, and
+/// what compares their sizes after both.
+fn stage(module: &str) -> (usize, usize) {
+    let mut parts = module.split("::");
+    match (parts.next().unwrap(), parts.next()) {
+        ("source", _) => (1, 0),
+        ("storage", Some("dense" | "octree")) => (2, 1),
+        ("storage", Some("estimate")) => (2, 2),
+        ("storage", _) => (2, 0),
+        ("render", _) => (3, 0),
+        ("io", _) => (4, 0),
+        _ => (0, 0),
     }
 }
 
@@ -178,8 +204,8 @@ fn stages_import_only_earlier_stages() {
         for target in uses {
             assert!(
                 stage(&target) <= stage(&module),
-                "{module} (stage {}) imports {target} (stage {}): a stage may \
-                 import only itself and earlier ones",
+                "{module} (stage {:?}) imports {target} (stage {:?}): a stage \
+                 may import only itself and earlier ones",
                 stage(&module),
                 stage(&target)
             );

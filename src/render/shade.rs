@@ -86,7 +86,7 @@ pub(crate) fn fog_blend(color: U8Vec3, t: f32, distance: f32) -> U8Vec3 {
 /// The color a primary ray gets from its first hit alone: what a pixel is
 /// when no secondary rays are traced (no shadows, no ambient occlusion) and
 /// one sample is taken. `flat` gives the voxel's color or [`FLAT_SKY`];
-/// `debug` is not drawn here (it needs the walk, see [`crate::render`]).
+/// `debug` is not drawn here (it needs the walk, see [`crate::render()`]).
 #[must_use]
 pub fn shade(hit: Option<&Hit>, ray: &Ray, options: &RenderOptions) -> U8Vec3 {
     match (hit, options.flat) {

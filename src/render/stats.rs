@@ -26,6 +26,10 @@ pub struct RayStats {
     /// Rays toward a light in a path-traced frame (next-event estimation:
     /// toward the sun's disk or an emissive voxel); 0 in face-shaded frames.
     pub light_rays: u64,
+    /// Rays of the kinds above answered together, in a packet (or by a
+    /// tile clear forever, which no ray of it can hit); every other ray
+    /// walked alone. Never more than [`RayStats::total`].
+    pub packet_rays: u64,
 }
 
 impl core::ops::AddAssign for RayStats {
@@ -37,6 +41,20 @@ impl core::ops::AddAssign for RayStats {
         self.reflection_rays += rhs.reflection_rays;
         self.refraction_rays += rhs.refraction_rays;
         self.light_rays += rhs.light_rays;
+        self.packet_rays += rhs.packet_rays;
+    }
+}
+
+impl RayStats {
+    /// Rays of every kind.
+    #[must_use]
+    pub fn total(&self) -> u64 {
+        self.primary_rays
+            + self.shadow_rays
+            + self.ao_rays
+            + self.reflection_rays
+            + self.refraction_rays
+            + self.light_rays
     }
 }
 

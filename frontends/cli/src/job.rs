@@ -354,6 +354,10 @@ impl Job<'_> {
         say!("reflection_rays: {}", rays.reflection_rays);
         say!("refraction_rays: {}", rays.refraction_rays);
         say!("light_rays: {}", rays.light_rays);
+        // The route each ray took: answered together (a packet, or a tile
+        // clear forever) or walked alone.
+        say!("rays_in_packets: {}", rays.packet_rays);
+        say!("rays_alone: {}", rays.total() - rays.packet_rays);
         say!("samples_per_pixel: {samples_per_pixel:.2}");
         say!("effects: {plan}");
         say!("storage_bytes: {storage_bytes}");

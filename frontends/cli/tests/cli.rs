@@ -150,6 +150,8 @@ fn stats_print_every_contract_key() {
         "reflection_rays",
         "refraction_rays",
         "light_rays",
+        "rays_in_packets",
+        "rays_alone",
         "storage_bytes",
         "mrays_per_s",
     ] {
@@ -166,6 +168,13 @@ fn stats_print_every_contract_key() {
     for key in ["reflection_rays", "refraction_rays", "light_rays"] {
         assert!(stderr.contains(&format!("{key}: 0\n")), "{stderr}");
     }
+    // Every ray took one route or the other.
+    let count = |key: &str| -> u64 {
+        let line = stderr.lines().find(|l| l.starts_with(&format!("{key}: ")));
+        line.and_then(|l| l.split_once(": ")?.1.parse().ok())
+            .unwrap()
+    };
+    assert_eq!(count("rays_in_packets") + count("rays_alone"), 512);
 }
 
 #[test]

@@ -98,21 +98,12 @@ impl Kernel for Flat<'_, '_, '_> {
         _: Option<&mut BlockSamples<'_>>,
         mut put: impl FnMut(usize, u32, RayStats),
     ) {
-        let reach = Reach::after(clear);
-        if lanes.is_power_of_two() {
-            // (Too cheap a pixel to fill a block's arrays for.)
-            let i = lanes.trailing_zeros() as usize;
-            let (x, y) = block_pixel(corner, i);
-            let ray = self.0.camera.get_ray(x, y);
-            let (rgba, rays) = self.color(scene.trace_with(&ray, reach, memory, None).hit);
-            put(i, rgba, rays);
-            return;
-        }
         let rays = lane_rays(self.0.camera, corner, lanes, None);
         let mut hits = [None; N];
-        trace_rays(scene, &rays, lanes, reach, memory, &mut hits);
+        let together = trace_rays(scene, &rays, lanes, Reach::after(clear), memory, &mut hits);
         for i in each_lane(lanes) {
-            let (rgba, rays) = self.color(hits[i]);
+            let (rgba, mut rays) = self.color(hits[i]);
+            rays.packet_rays = u64::from(together >> i & 1);
             put(i, rgba, rays);
         }
     }

@@ -62,14 +62,16 @@ impl Kernel for Lit<'_, '_, '_> {
         for s in 0..self.samples() {
             let rays = lane_rays(self.0.camera, corner, lanes, (!one_ray).then_some(s));
             let mut hits = [None; N];
-            trace_rays(scene, &rays, lanes, reach, memory, &mut hits);
-            let blocked = self.shadowed(scene, (&rays, &hits), lanes, memory);
-            let open = match self.0.options.occlusion {
+            let together = trace_rays(scene, &rays, lanes, reach, memory, &mut hits);
+            let (blocked, shadows_together) = self.shadowed(scene, (&rays, &hits), lanes, memory);
+            let (open, open_together) = match self.0.options.occlusion {
                 Some(ao) => self.open(scene, ao, (corner, s), (&rays, &hits), lanes, memory),
-                None => [0; N],
+                None => ([0; N], [0; N]),
             };
             for i in each_lane(lanes) {
-                let shaded = self.shade(&rays[i], hits[i], blocked >> i & 1 != 0, open[i]);
+                let mut shaded = self.shade(&rays[i], hits[i], blocked >> i & 1 != 0, open[i]);
+                let paired = (together >> i & 1) + (shadows_together >> i & 1);
+                shaded.1.packet_rays = u64::from(paired + open_together[i]);
                 match &mut means {
                     None => {
                         let (rgba, rays) = self.packed(shaded);
@@ -149,7 +151,8 @@ impl Lit<'_, '_, '_> {
     /// hit sends one when the frame has shadows and its face is turned to
     /// the sun and known ([`secondary`]). The rays walk from a copy of the
     /// camera rays' memory (the next pixels' camera rays begin from it):
-    /// several together ([`trace_rays`]), a lone lane's alone.
+    /// several together ([`trace_rays`]), a lone lane's alone. Also
+    /// returns the lanes whose shadow ray was answered together.
     #[inline]
     fn shadowed<'s, S: Scene + ?Sized, const N: usize>(
         &self,
@@ -157,9 +160,9 @@ impl Lit<'_, '_, '_> {
         (rays, hits): (&[Ray; N], &[Option<Hit>; N]),
         lanes: u32,
         memory: &WalkMemory<'s>,
-    ) -> u32 {
+    ) -> (u32, u32) {
         if !self.shadows() {
-            return 0;
+            return (0, 0);
         }
         let shader = self.0;
         let sunlit = |hit: &&Hit| shader.sunlit[face_index(hit.face)];
@@ -170,7 +173,7 @@ impl Lit<'_, '_, '_> {
             let i = lanes.trailing_zeros() as usize;
             let blocker =
                 shadow(i).and_then(|ray| scene.trace_with(&ray, Reach::ALL, memory, None).hit);
-            return u32::from(blocker.is_some()) << i;
+            return (u32::from(blocker.is_some()) << i, 0);
         }
         let (mut shadows, mut sent) = (*rays, 0u32);
         for i in each_lane(lanes) {
@@ -180,17 +183,21 @@ impl Lit<'_, '_, '_> {
             }
         }
         let mut blockers = [None; N];
-        trace_rays(scene, &shadows, sent, Reach::ALL, memory, &mut blockers);
+        let together = trace_rays(scene, &shadows, sent, Reach::ALL, memory, &mut blockers);
         let blocked = |i: usize| u32::from(blockers[i].is_some()) << i;
-        each_lane(sent).fold(0, |mask, i| mask | blocked(i))
+        (
+            each_lane(sent).fold(0, |mask, i| mask | blocked(i)),
+            together,
+        )
     }
 
     /// How many occlusion rays of each lane's hit (`hits[i]`, of the camera
     /// ray `rays[i]`, sample `sample` of lane `i` of the block from
     /// `corner`) meet nothing within the reach of `ao`, one that cannot
     /// leave the face counted open (0 for a lane without a face): in
-    /// packets by octant for close hits
-    /// (`packets.rs`), else alone from a copy of the camera ray's memory.
+    /// packets by octant for close hits (`packets.rs`), else alone from a
+    /// copy of the camera ray's memory. Also returns how many of each
+    /// lane's rays were answered together.
     #[inline]
     fn open<'s, S: Scene + ?Sized, const N: usize>(
         &self,
@@ -200,8 +207,8 @@ impl Lit<'_, '_, '_> {
         (rays, hits): (&[Ray; N], &[Option<Hit>; N]),
         lanes: u32,
         memory: &WalkMemory<'s>,
-    ) -> [u32; N] {
-        let mut open = [0u32; N];
+    ) -> ([u32; N], [u32; N]) {
+        let (mut open, mut together) = ([0u32; N], [0u32; N]);
         let reach = Reach::within(ao.distance);
         #[cfg(feature = "packets")]
         let mut bins =
@@ -219,7 +226,7 @@ impl Lit<'_, '_, '_> {
                 #[cfg(feature = "packets")]
                 if let Some(bins) = &mut bins {
                     if let Some(full) = put(bins, ray, i) {
-                        full.trace(scene, reach, memory, &mut open);
+                        full.trace(scene, reach, memory, (&mut open, &mut together));
                     }
                     continue;
                 }
@@ -229,9 +236,9 @@ impl Lit<'_, '_, '_> {
         }
         #[cfg(feature = "packets")]
         for bin in bins.iter_mut().flatten() {
-            bin.trace(scene, reach, memory, &mut open);
+            bin.trace(scene, reach, memory, (&mut open, &mut together));
         }
-        open
+        (open, together)
     }
 
     /// A one-ray pixel's packed color from its shaded sample.

@@ -242,7 +242,8 @@ fn lane_rays<const N: usize>(
 /// The hits of the lanes `lanes` of `rays` over `reach`, into `hits`
 /// (other lanes untouched), exactly [`Scene::trace_with`]'s: several by
 /// [`Scene::trace_lanes`], a lone lane by its own walk (a packet of one
-/// shares nothing).
+/// shares nothing). Returns the lanes answered together, without a walk
+/// of their own ([`RayStats::packet_rays`] counts them).
 #[inline(always)]
 fn trace_rays<'s, S: Scene + ?Sized, const N: usize>(
     scene: &'s S,
@@ -251,20 +252,20 @@ fn trace_rays<'s, S: Scene + ?Sized, const N: usize>(
     reach: Reach,
     memory: &mut WalkMemory<'s>,
     hits: &mut [Option<Hit>; N],
-) {
+) -> u32 {
     #[cfg(feature = "packets")]
     if let (Ok(packet), Ok(answers)) = (
         <&[Ray; PACKET]>::try_from(&rays[..]),
         <&mut [Option<Hit>; PACKET]>::try_from(&mut hits[..]),
     ) {
         if !lanes.is_power_of_two() {
-            scene.trace_lanes(packet, lanes, reach, memory, answers);
-            return;
+            return scene.trace_lanes(packet, lanes, reach, memory, answers);
         }
     }
     for i in each_lane(lanes) {
         hits[i] = scene.trace_with(&rays[i], reach, memory, None).hit;
     }
+    0
 }
 
 impl FrameSetup<'_, '_> {

@@ -36,22 +36,23 @@ impl Bin {
 
     /// Traces the bin's rays over `reach`, from a copy of `memory`, and
     /// empties it: `open[lane]` counts the rays of `lane` that meet
-    /// nothing.
+    /// nothing, `together[lane]` those answered together.
     pub(super) fn trace<'s, S: Scene + ?Sized>(
         &mut self,
         scene: &'s S,
         reach: Reach,
         memory: &WalkMemory<'s>,
-        open: &mut [u32],
+        (open, together): (&mut [u32], &mut [u32]),
     ) {
         if self.len == 0 {
             return;
         }
         let (lanes, memory) = (u32::MAX >> (PACKET - self.len), &mut memory.clone());
         let mut hits = [None; PACKET];
-        trace_rays(scene, &self.rays, lanes, reach, memory, &mut hits);
-        for (hit, &owner) in hits.iter().zip(&self.owners).take(self.len) {
+        let answered = trace_rays(scene, &self.rays, lanes, reach, memory, &mut hits);
+        for (i, (hit, &owner)) in hits.iter().zip(&self.owners).take(self.len).enumerate() {
             open[usize::from(owner)] += u32::from(hit.is_none());
+            together[usize::from(owner)] += answered >> i & 1;
         }
         self.len = 0;
     }
@@ -76,11 +77,7 @@ fn octant(dir: Vec3A) -> usize {
 
 /// Whether the hits of a block lie within `reach` of one another on every
 /// axis, so that their occlusion rays cross the same nodes: only then do
-/// they pay in packets. Measured at size 250, `--shadows --ao 4` (reach
-/// 8), one thread, on a 2-core AMD EPYC VM (medians of 5 to 7, ms):
-/// packets for every block took 133, 344 and 978 at 480x270, 960x540
-/// and 1920x1080; within the reach, 108, 285 and 861; within half of it,
-/// 108, 319 and 903; no packets, 108, 347 and 1204.
+/// they pay in packets (benches/README.md).
 #[inline]
 pub(super) fn close(hits: &[Option<Hit>], reach: f32) -> bool {
     let (mut lo, mut hi) = (IVec3::MAX, IVec3::MIN);
