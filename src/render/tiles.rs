@@ -141,14 +141,13 @@ impl<K: Kernel, S: Scene + ?Sized, P: FnMut(u32, u32, u32)> Blocks<'_, '_, K, S,
             cells: &mut r.samples[by as usize * stride + bx as usize..],
             stride,
         });
-        let (put, stats) = (&mut self.put, &mut self.stats);
-        let memory = &mut self.memory;
-        let samples = samples.as_mut();
-        self.kernel
-            .block::<S, N>(self.scene, block, memory, samples, |i, rgba, rays| {
+        let put = &mut self.put;
+        let (memory, samples) = (&mut self.memory, samples.as_mut());
+        self.stats += self
+            .kernel
+            .block::<S, N>(self.scene, block, memory, samples, |i, rgba| {
                 let (dx, dy) = lane_offset(i);
                 put(bx + dx, by + dy, rgba);
-                *stats += rays;
             });
     }
 

@@ -18,7 +18,7 @@ use crate::render::shader::lit::Lit;
 use crate::render::shader::{each_lane, lane_rays, trace_rays};
 use crate::render::shader::{Block, BlockSamples, FrameSetup, Job, Kernel};
 use crate::render::stats::RayStats;
-use crate::scene::{Hit, Reach, Scene, WalkMemory};
+use crate::scene::{Reach, Scene, WalkMemory};
 
 impl FrameSetup<'_, '_> {
     /// Runs `job` with the kernel of this frame's look: the flat look, the
@@ -56,8 +56,9 @@ impl Kernel for Path<'_, '_> {
         block: Block,
         memory: &mut WalkMemory<'s>,
         mut samples: Option<&mut BlockSamples<'_>>,
-        mut put: impl FnMut(usize, u32, RayStats),
-    ) {
+        mut put: impl FnMut(usize, u32),
+    ) -> RayStats {
+        let mut stats = RayStats::default();
         for i in each_lane(block.lanes) {
             let pixel = block_pixel(block.corner, i);
             let mut fresh = PixelSamples::default();
@@ -68,9 +69,11 @@ impl Kernel for Path<'_, '_> {
             if let Some((rgba, rays)) =
                 self.resume_pixel(scene, pixel, block.clear, memory, state, round)
             {
-                put(i, rgba, rays);
+                put(i, rgba);
+                stats += rays;
             }
         }
+        stats
     }
 }
 
@@ -96,25 +99,22 @@ impl Kernel for Flat<'_, '_, '_> {
         }: Block,
         memory: &mut WalkMemory<'s>,
         _: Option<&mut BlockSamples<'_>>,
-        mut put: impl FnMut(usize, u32, RayStats),
-    ) {
+        mut put: impl FnMut(usize, u32),
+    ) -> RayStats {
         let rays = lane_rays(self.0.camera, corner, lanes, None);
         let mut hits = [None; N];
         let together = trace_rays(scene, &rays, lanes, Reach::after(clear), memory, &mut hits);
+        let mut stats = RayStats {
+            primary_rays: u64::from(lanes.count_ones()),
+            packet_rays: u64::from(together.count_ones()),
+            ..RayStats::default()
+        };
         for i in each_lane(lanes) {
-            let (rgba, mut rays) = self.color(hits[i]);
-            rays.packet_rays = u64::from(together >> i & 1);
-            put(i, rgba, rays);
+            let rgba = hits[i].map_or_else(|| self.0.miss(FLAT_SKY), |h| pack(h.voxel.color));
+            stats.primary_hits += u64::from(hits[i].is_some());
+            put(i, rgba);
         }
-    }
-}
-
-impl Flat<'_, '_, '_> {
-    /// The packed pixel of a camera ray that found `hit`, and its ray.
-    #[inline]
-    fn color(&self, hit: Option<Hit>) -> (u32, RayStats) {
-        let rgba = hit.map_or_else(|| self.0.miss(FLAT_SKY), |h| pack(h.voxel.color));
-        (rgba, primary(hit.as_ref()))
+        stats
     }
 }
 
@@ -130,8 +130,9 @@ impl Kernel for DebugView<'_, '_, '_> {
         block: Block,
         _: &mut WalkMemory<'s>,
         _: Option<&mut BlockSamples<'_>>,
-        mut put: impl FnMut(usize, u32, RayStats),
-    ) {
+        mut put: impl FnMut(usize, u32),
+    ) -> RayStats {
+        let mut stats = RayStats::default();
         for i in each_lane(block.lanes) {
             let (x, y) = block_pixel(block.corner, i);
             let ray = self.0.camera.get_ray(x, y);
@@ -148,8 +149,10 @@ impl Kernel for DebugView<'_, '_, '_> {
                 (None, None) => self.0.miss(sky(ray.dir())),
             };
             // A ray stopped at an edge still counts as one primary ray.
-            put(i, rgba, primary(traced.hit.as_ref()));
+            stats += primary(traced.hit.as_ref());
+            put(i, rgba);
         }
+        stats
     }
 
     fn uses_beam(&self) -> bool {

@@ -12,7 +12,7 @@ use glam::{U8Vec3, UVec3};
 use crate::geom::{Face, Ray};
 use crate::render::camera::block_pixel;
 use crate::render::options::{Background, Occlusion};
-use crate::render::rays::{around, primary, secondary};
+use crate::render::rays::{around, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key, r2};
 use crate::render::shade::{face_index, fog_blend, lit, pack, pack_mean, sky};
 use crate::render::shader::{
@@ -54,9 +54,10 @@ impl Kernel for Lit<'_, '_, '_> {
         }: Block,
         memory: &mut WalkMemory<'s>,
         _: Option<&mut BlockSamples<'_>>,
-        mut put: impl FnMut(usize, u32, RayStats),
-    ) {
+        mut put: impl FnMut(usize, u32),
+    ) -> RayStats {
         let (one_ray, reach) = (self.one_ray(), Reach::after(clear));
+        let mut stats = RayStats::default();
         // A pixel of several samples is their mean, summed as they come.
         let mut means = (!one_ray).then(|| [Mean::default(); N]);
         for s in 0..self.samples() {
@@ -68,16 +69,17 @@ impl Kernel for Lit<'_, '_, '_> {
                 Some(ao) => self.open(scene, ao, (corner, s), (&rays, &hits), lanes, memory),
                 None => ([0; N], [0; N]),
             };
+            stats.primary_rays += u64::from(lanes.count_ones());
+            let paired = together.count_ones() + shadows_together.count_ones();
+            stats.packet_rays += u64::from(paired);
             for i in each_lane(lanes) {
-                let mut shaded = self.shade(&rays[i], hits[i], blocked >> i & 1 != 0, open[i]);
-                let paired = (together >> i & 1) + (shadows_together >> i & 1);
-                shaded.1.packet_rays = u64::from(paired + open_together[i]);
+                let open = (open[i], open_together[i]);
+                let blocked = blocked >> i & 1 != 0;
+                let color = self.shade(&rays[i], hits[i], blocked, open, &mut stats);
+                let hit = hits[i].is_some();
                 match &mut means {
-                    None => {
-                        let (rgba, rays) = self.packed(shaded);
-                        put(i, rgba, rays);
-                    }
-                    Some(means) => means[i].add(shaded, self.0),
+                    None => put(i, self.packed(color, hit)),
+                    Some(means) => means[i].add(color, hit, self.0),
                 }
             }
         }
@@ -85,40 +87,39 @@ impl Kernel for Lit<'_, '_, '_> {
             .iter()
             .flat_map(|m| each_lane(lanes).map(move |i| (i, m[i])))
         {
-            let (rgba, rays) = mean.pixel(self.samples(), self.0);
-            put(i, rgba, rays);
+            put(i, mean.pixel(self.samples(), self.0));
         }
+        stats
     }
 }
 
 /// A pixel's samples so far: their colors summed (a miss as the
-/// background's, none for a transparent one) and their rays.
+/// background's, none for a transparent one) and how many hit.
 #[derive(Clone, Copy, Default)]
 struct Mean {
     sum: UVec3,
-    stats: RayStats,
+    hits: u32,
 }
 
 impl Mean {
-    /// Adds a sample: its color and rays ([`Lit::shade`]).
+    /// Adds a sample: its color ([`Lit::shade`]) and whether it hit.
     #[inline]
-    fn add(&mut self, (color, rays): (U8Vec3, RayStats), shader: &FrameSetup) {
-        if rays.primary_hits > 0 {
+    fn add(&mut self, color: U8Vec3, hit: bool, shader: &FrameSetup) {
+        if hit {
             self.sum += color.as_uvec3();
+            self.hits += 1;
         } else if shader.options.background != Background::Transparent {
             self.sum += shader.miss_color(color).as_uvec3();
         }
-        self.stats += rays;
     }
 
     /// The pixel of `samples` samples: their rounded mean, in integers,
-    /// packed, and their rays.
+    /// packed.
     #[inline]
-    fn pixel(&self, samples: u32, shader: &FrameSetup) -> (u32, RayStats) {
+    fn pixel(&self, samples: u32, shader: &FrameSetup) -> u32 {
         let transparent = shader.options.background == Background::Transparent;
         let mean_of = |n: u32| ((self.sum + UVec3::splat(n / 2)) / n).as_u8vec3();
-        let hits = self.stats.primary_hits as u32;
-        (pack_mean(samples, hits, transparent, mean_of), self.stats)
+        pack_mean(samples, self.hits, transparent, mean_of)
     }
 }
 
@@ -241,27 +242,37 @@ impl Lit<'_, '_, '_> {
         (open, together)
     }
 
-    /// A one-ray pixel's packed color from its shaded sample.
+    /// A one-ray pixel's packed color from its shaded sample, which hit
+    /// a voxel or not.
     #[inline]
-    fn packed(&self, (color, stats): (U8Vec3, RayStats)) -> (u32, RayStats) {
-        if stats.primary_hits == 0 {
-            return (self.0.miss(color), stats);
+    fn packed(&self, color: U8Vec3, hit: bool) -> u32 {
+        if hit {
+            pack(color)
+        } else {
+            self.0.miss(color)
         }
-        (pack(color), stats)
     }
 
-    /// A sample's color and rays: the camera ray `ray`'s hit `hit` in its
-    /// face's light, in shadow where its shadow ray was `blocked`
+    /// A sample's color: the camera ray `ray`'s hit `hit` in its face's
+    /// light, in shadow where its shadow ray was `blocked`
     /// ([`Lit::shadowed`]), dimmed to the share of its occlusion rays that
-    /// are `open` ([`Lit::open`]), fogged by its distance; a miss is the
-    /// sky in the ray's direction.
+    /// are open (`open`: how many, and how many were answered together,
+    /// [`Lit::open`]), fogged by its distance; a miss is the sky in the
+    /// ray's direction. Its hit and secondary rays are counted in `stats`.
     #[inline]
-    fn shade(&self, ray: &Ray, hit: Option<Hit>, blocked: bool, open: u32) -> (U8Vec3, RayStats) {
+    fn shade(
+        &self,
+        ray: &Ray,
+        hit: Option<Hit>,
+        blocked: bool,
+        (open, together): (u32, u32),
+        stats: &mut RayStats,
+    ) -> U8Vec3 {
         let shader = self.0;
-        let mut stats = primary(hit.as_ref());
         let Some(hit) = hit else {
-            return (sky(ray.dir()), stats);
+            return sky(ray.dir());
         };
+        stats.primary_hits += 1;
         let face = face_index(hit.face);
         let mut light = u32::from(shader.light[face]);
         if self.shadows() && shader.sunlit[face] {
@@ -273,13 +284,14 @@ impl Lit<'_, '_, '_> {
         if let (Some(_), Some(ao)) = (hit.face, shader.options.occlusion) {
             let rays = u32::from(ao.rays);
             stats.ao_rays += u64::from(rays);
+            stats.packet_rays += u64::from(together);
             light = light * open / rays;
         }
         let mut color = lit(hit.voxel.color, light);
         if let Some(fog) = shader.options.fog {
             color = fog_blend(color, hit.t, fog.distance);
         }
-        (color, stats)
+        color
     }
 }
 

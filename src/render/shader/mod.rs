@@ -166,8 +166,8 @@ impl BlockSamples<'_> {
 
 /// Computes pixels with one fixed set of effects.
 pub(crate) trait Kernel: Sync {
-    /// The pixels of `block`, handed to `put(i, rgba, rays)`, lowest lane
-    /// first, made in arrays of `N` lanes: [`crate::PACKET`] for an 8x4 block,
+    /// The pixels of `block`, handed to `put(i, rgba)`, lowest lane first,
+    /// and the rays they traced, made in arrays of `N` lanes: [`crate::PACKET`] for an 8x4 block,
     /// 1 for a lone pixel (lane 0 alone), so that a lone pixel fills no
     /// block's arrays. Its walks may begin from what the previous block's left in
     /// `memory`; a pixel is the same for any `clear` it is given and
@@ -181,8 +181,8 @@ pub(crate) trait Kernel: Sync {
         block: Block,
         memory: &mut WalkMemory<'s>,
         samples: Option<&mut BlockSamples<'_>>,
-        put: impl FnMut(usize, u32, RayStats),
-    );
+        put: impl FnMut(usize, u32),
+    ) -> RayStats;
 
     /// Whether the kernel's pixels take their samples in rounds (the
     /// path tracer); the face-shaded looks' take theirs in one pass.
