@@ -218,104 +218,167 @@ const ROUND_BAND: u32 = 4;
 
 impl<S: Scene + Sync + ?Sized> FrameJob<'_, S> {
     /// Round `n` (one pass when `samples` is `None`) over the region, a
-    /// band of rows at a time ([`Bands`]): on this thread into a buffer,
-    /// else one rayon task per band, each band its own job (left to
-    /// rayon's adaptive splitting, a thread would take a run of bands and
-    /// walk it alone, and where the costly bands bunch up, the terrain
-    /// under the sky, the other thread ran out of work). Returns the rays
-    /// traced and whether a pixel is left that is not done.
+    /// band of rows at a time: on this thread into a buffer, else one
+    /// rayon task per band, each band its own job (left to rayon's
+    /// adaptive splitting, a thread would take a run of bands and walk it
+    /// alone, and where the costly bands bunch up, the terrain under the
+    /// sky, the other thread ran out of work). Only a band's tiles are
+    /// compiled per kernel; the bands are handed out by code shared by
+    /// every kernel. Returns the rays traced and whether a pixel is left
+    /// that is not done.
     fn round<K: Kernel>(
         &mut self,
         kernel: &K,
         samples: Option<&mut [PixelSamples]>,
         n: u32,
     ) -> (RayStats, bool) {
+        let (scene, camera, region) = (self.scene, self.camera, self.region);
         let rows = if samples.is_some() { ROUND_BAND } else { TILE };
         let bands = Bands {
-            kernel,
-            scene: self.scene,
-            camera: self.camera,
-            region: self.region,
+            region,
             rows,
-            n,
             rows_done: self.rows_done,
         };
-        let band_len = self.region.width as usize * rows as usize;
-        let sum = |a: (RayStats, bool), b: (RayStats, bool)| (a.0 + b.0, a.1 || b.1);
+        let tiles = BandTiles {
+            kernel,
+            scene,
+            camera,
+            bands,
+            n,
+        };
         match &mut self.target {
             Target::Buffer(out) => {
-                let stride = self.region.width as usize;
-                let mut states = samples.map(|s| s.chunks_mut(band_len));
-                let each = out.chunks_mut(band_len).enumerate();
-                each.fold((RayStats::default(), false), |traced, (index, out)| {
-                    let states = states.as_mut().and_then(Iterator::next);
-                    let put =
-                        |dx: u32, dy: u32, rgba| out[dy as usize * stride + dx as usize] = rgba;
-                    sum(traced, bands.band(index, states, put))
+                let stride = region.width as usize;
+                bands.into_buffer(out, samples, &mut |index, states, out| {
+                    tiles.run(index, states, |dx, dy, rgba| {
+                        out[dy as usize * stride + dx as usize] = rgba;
+                    })
                 })
             }
             #[cfg(feature = "rayon")]
             Target::Framebuffer(frame) => {
                 let frame = &**frame;
-                let in_band = |index: usize, states| {
+                bands.into_framebuffer(samples, &|index, states| {
                     let y0 = index as u32 * rows;
-                    bands.band(index, states, |dx, dy, rgba| {
+                    tiles.run(index, states, |dx, dy, rgba| {
                         frame.set(dx, y0 + dy, rgba);
                     })
-                };
-                let nothing = || (RayStats::default(), false);
-                match samples {
-                    Some(samples) => samples
-                        .par_chunks_mut(band_len)
-                        .with_max_len(1)
-                        .enumerate()
-                        .map(|(index, states)| in_band(index, Some(states)))
-                        .reduce(nothing, sum),
-                    None => (0..self.region.height.div_ceil(rows) as usize)
-                        .into_par_iter()
-                        .with_max_len(1)
-                        .map(|index| in_band(index, None))
-                        .reduce(nothing, sum),
-                }
+                })
             }
         }
     }
 }
 
-/// A round's bands of `rows` rows of the region.
-struct Bands<'a, K, S: ?Sized> {
+/// What a band's tiles give: the rays traced, and whether a pixel is left
+/// that is not done.
+type Traced = (RayStats, bool);
+
+/// A band's pixels' states in a render in rounds (`None` in one pass).
+type States<'a> = Option<&'a mut [PixelSamples]>;
+
+/// A round's bands, each rendered tile by tile with one kernel.
+struct BandTiles<'a, K, S: ?Sized> {
     kernel: &'a K,
     scene: &'a S,
     camera: &'a Camera,
-    region: Rect,
-    rows: u32,
+    bands: Bands<'a>,
     /// The round (with pixels' states; ignored in one pass).
     n: u32,
+}
+
+impl<K: Kernel, S: Scene + ?Sized> BandTiles<'_, K, S> {
+    /// Band `index` with its pixels' states (in a render in rounds), its
+    /// pixels handed to `put(dx, dy, rgba)` at their offsets inside the
+    /// band.
+    fn run(
+        &self,
+        index: usize,
+        states: Option<&mut [PixelSamples]>,
+        put: impl FnMut(u32, u32, u32),
+    ) -> Traced {
+        let round = states.map(|samples| Round { n: self.n, samples });
+        let rect = self.bands.rect(index);
+        render_tiles(self.kernel, self.scene, self.camera, rect, round, put)
+    }
+}
+
+/// The bands of `rows` rows of a region, handed out in order on this
+/// thread or as rayon tasks.
+#[derive(Clone, Copy)]
+struct Bands<'a> {
+    region: Rect,
+    rows: u32,
     rows_done: RowsDone<'a>,
 }
 
-impl<K: Kernel, S: Scene + Sync + ?Sized> Bands<'_, K, S> {
-    /// Band `index`, with its pixels' states in a render in rounds, its
-    /// pixels handed to `put(dx, dy, rgba)` at their offsets inside the
-    /// band: the rays traced and whether a pixel is left that is not done.
-    fn band(
-        &self,
-        index: usize,
-        samples: Option<&mut [PixelSamples]>,
-        put: impl FnMut(u32, u32, u32),
-    ) -> (RayStats, bool) {
+impl Bands<'_> {
+    /// Band `index`'s rows of the region.
+    fn rect(self, index: usize) -> Rect {
         let region = self.region;
         let y = region.y + index as u32 * self.rows;
-        let rect = Rect {
+        Rect {
             y,
             height: self.rows.min(region.y + region.height - y),
             ..region
-        };
-        let round = samples.map(|samples| Round { n: self.n, samples });
-        let traced = render_tiles(self.kernel, self.scene, self.camera, rect, round, put);
-        if let Some(rows_done) = self.rows_done {
-            rows_done(rect.height);
+        }
+    }
+
+    /// Every band in order on this thread: `band(index, states, pixels)`
+    /// with the band's pixels' states (in a render in rounds) and its
+    /// rows of `out`.
+    fn into_buffer(
+        self,
+        out: &mut [u32],
+        samples: Option<&mut [PixelSamples]>,
+        band: &mut dyn FnMut(usize, States<'_>, &mut [u32]) -> Traced,
+    ) -> Traced {
+        let band_len = self.region.width as usize * self.rows as usize;
+        let mut states = samples.map(|s| s.chunks_mut(band_len));
+        let mut traced = (RayStats::default(), false);
+        for (index, out) in out.chunks_mut(band_len).enumerate() {
+            let states = states.as_mut().and_then(Iterator::next);
+            let (rays, left) = band(index, states, out);
+            traced = (traced.0 + rays, traced.1 || left);
+            self.done(index);
         }
         traced
+    }
+
+    /// Every band as its own rayon task: `band(index, states)`, with the
+    /// band's pixels' states in a render in rounds.
+    #[cfg(feature = "rayon")]
+    fn into_framebuffer(
+        self,
+        samples: Option<&mut [PixelSamples]>,
+        band: &(dyn Fn(usize, States<'_>) -> Traced + Sync),
+    ) -> Traced {
+        let band_len = self.region.width as usize * self.rows as usize;
+        let in_band = |index: usize, states| {
+            let traced = band(index, states);
+            self.done(index);
+            traced
+        };
+        let nothing = || (RayStats::default(), false);
+        let sum = |a: Traced, b: Traced| (a.0 + b.0, a.1 || b.1);
+        match samples {
+            Some(samples) => samples
+                .par_chunks_mut(band_len)
+                .with_max_len(1)
+                .enumerate()
+                .map(|(index, states)| in_band(index, Some(states)))
+                .reduce(nothing, sum),
+            None => (0..self.region.height.div_ceil(self.rows) as usize)
+                .into_par_iter()
+                .with_max_len(1)
+                .map(|index| in_band(index, None))
+                .reduce(nothing, sum),
+        }
+    }
+
+    /// Tells the caller that band `index` is finished.
+    fn done(self, index: usize) {
+        if let Some(rows_done) = self.rows_done {
+            rows_done(self.rect(index).height);
+        }
     }
 }

@@ -6,14 +6,15 @@ use glam::{Vec2, Vec3A, Vec4};
 use crate::geom::Ray;
 use crate::math::per_axis;
 use crate::render::camera::{block_pixel, Camera};
-use crate::scene::PACKET;
 
 impl Camera {
     /// The rays through the centers of the 8x4 pixels from `(i, j)`: lane
     /// `k` is pixel `(i + k % 8, j + k / 8)`'s, bit for bit the ray
-    /// [`Camera::get_ray`] gives it.
+    /// [`Camera::get_ray`] gives it. `N` is the block's [`crate::PACKET`] lanes
+    /// (a multiple of four), given as the caller's array type so that the
+    /// rays are made where the caller keeps them.
     #[must_use]
-    pub(crate) fn block_rays(&self, i: u32, j: u32) -> [Ray; PACKET] {
+    pub(crate) fn block_rays<const N: usize>(&self, i: u32, j: u32) -> [Ray; N] {
         self.rays_through(
             |k| {
                 let (x, y) = block_pixel((i, j), k);
@@ -29,13 +30,13 @@ impl Camera {
     /// The rays of one sample of each of the 8x4 pixels from `corner`:
     /// lane `k`'s through the point `offset(k)` of its pixel
     /// ([`block_pixel`]), bit for bit the ray [`Camera::get_ray_at`] gives
-    /// it.
+    /// it. `N` as for [`Camera::block_rays`].
     #[must_use]
-    pub(crate) fn block_sample_rays(
+    pub(crate) fn block_sample_rays<const N: usize>(
         &self,
         corner: (u32, u32),
         offset: impl Fn(usize) -> Vec2,
-    ) -> [Ray; PACKET] {
+    ) -> [Ray; N] {
         // `get_ray_at`'s continuous coordinates, and their point's offset
         // from pixel (0, 0)'s center, in its order.
         let at = |k| {
@@ -63,13 +64,13 @@ impl Camera {
     /// the divisions and square roots that bound a lone ray's time
     /// overlap.
     #[inline]
-    fn rays_through(
+    fn rays_through<const N: usize>(
         &self,
         point: impl Fn(usize) -> (f32, f32),
         lone: impl Fn(usize) -> Ray,
-    ) -> [Ray; PACKET] {
-        let mut rays = [self.forward; PACKET];
-        for quad in 0..PACKET / 4 {
+    ) -> [Ray; N] {
+        let mut rays = [self.forward; N];
+        for quad in 0..N / 4 {
             let lanes = &mut rays[quad * 4..][..4];
             if self.orthographic {
                 for (lane, ray) in lanes.iter_mut().enumerate() {
@@ -119,6 +120,7 @@ mod tests {
     use crate::geom::Ray;
     use crate::render::camera::{block_pixel, Camera, CameraSettings};
     use crate::render::view::Projection;
+    use crate::scene::PACKET;
 
     proptest! {
         /// Every lane of a block is the lone ray of its pixel, bit for bit,
@@ -157,8 +159,8 @@ mod tests {
             let last = (u32::MAX - 2, u32::MAX - 1);
             let centers = if block.0 % 7 == 0 { last } else { corner };
             let offset = |k: usize| Vec2::new(offsets[k].0, offsets[k].1);
-            let rays = camera.block_rays(centers.0, centers.1);
-            let samples = camera.block_sample_rays(corner, offset);
+            let rays = camera.block_rays::<PACKET>(centers.0, centers.1);
+            let samples = camera.block_sample_rays::<PACKET>(corner, offset);
             for (k, (ray, sample)) in rays.iter().zip(&samples).enumerate() {
                 let (x, y) = block_pixel(centers, k);
                 prop_assert_eq!(bits(ray), bits(&camera.get_ray(x, y)), "pixel ({}, {})", x, y);

@@ -83,11 +83,10 @@ impl Kernel for Lit<'_, '_, '_> {
                 }
             }
         }
-        for (i, mean) in means
-            .iter()
-            .flat_map(|m| each_lane(lanes).map(move |i| (i, m[i])))
-        {
-            put(i, mean.pixel(self.samples(), self.0));
+        if let Some(means) = &means {
+            for i in each_lane(lanes) {
+                put(i, means[i].pixel(self.samples(), self.0));
+            }
         }
         stats
     }
@@ -209,7 +208,10 @@ impl Lit<'_, '_, '_> {
         lanes: u32,
         memory: &WalkMemory<'s>,
     ) -> ([u32; N], [u32; N]) {
-        let (mut open, mut together) = ([0u32; N], [0u32; N]);
+        let mut open = [0u32; N];
+        // Rays answered together: only packets answer any.
+        #[cfg_attr(not(feature = "packets"), allow(unused_mut))]
+        let mut together = [0u32; N];
         let reach = Reach::within(ao.distance);
         #[cfg(feature = "packets")]
         let mut bins =

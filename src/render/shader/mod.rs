@@ -226,13 +226,12 @@ fn lane_rays<const N: usize>(
 ) -> [Ray; N] {
     #[cfg(feature = "packets")]
     if N == PACKET && !lanes.is_power_of_two() {
-        let rays = match sample {
+        return match sample {
             None => camera.block_rays(corner.0, corner.1),
             Some(s) => {
                 camera.block_sample_rays(corner, |i| sample_offset(block_pixel(corner, i), s))
             }
         };
-        return core::array::from_fn(|i| rays[i]);
     }
     // A lone lane's ray, in every lane.
     let lane = lanes.trailing_zeros() as usize;
