@@ -32,7 +32,8 @@ pub use export::{export_vox, terrain_box};
 pub use frames::{frame_path, parse_frame_range, turntable, FrameRange};
 // The framing is the shared crate's (the web page frames the same way);
 // the CLI's tests check it through the CLI.
-pub use pipeline::{on_threads, Backend, BuiltScene, Rendered, ROUND_STATE_BYTES};
+pub use pipeline::{on_threads, Backend, BuiltScene, ROUND_STATE_BYTES};
 pub use render_job::mean_radiance;
+pub use render_job::Rendered;
 pub use units::human_bytes;
 pub use voxtrace_flags::framing;

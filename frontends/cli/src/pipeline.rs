@@ -9,12 +9,12 @@ use std::time::{Duration, Instant};
 
 use clap::ValueEnum;
 
-use crate::render_job::{Pass, RenderJob};
+use crate::render_job::{Pass, RenderJob, Rendered};
 use crate::units::human_bytes;
 use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{
-    Camera, DenseScene, Error, IAabb, Node, OctreeScene, PixelSamples, RayStats, Rect,
-    RenderOptions, RoundsDone, Scene, SceneMaterials, VoxelGenerator, VoxelSource, WithMaterials,
+    Camera, DenseScene, Error, IAabb, Node, OctreeScene, PixelSamples, Rect, RenderOptions,
+    RoundsDone, Scene, SceneMaterials, VoxelGenerator, VoxelSource, WithMaterials,
 };
 
 /// Which storage holds the voxels.
@@ -64,22 +64,6 @@ pub enum BuiltScene {
     Dense(DenseScene<Vec<u8>>),
     /// The sparse octree.
     Octree(OctreeScene<Vec<Node>, Vec<u8>>),
-}
-
-/// A rendered region: its pixels (row-major, `pack`ed RGBA8) and what it
-/// cost.
-pub struct Rendered {
-    /// `region.width * region.height` pixels.
-    pub pixels: Vec<u32>,
-    /// Rays traced, by kind.
-    pub rays: RayStats,
-    /// Wall time of the render alone (no allocation of the scene, no
-    /// encoding).
-    pub elapsed: Duration,
-    /// Each pixel's mean radiance (three `f32`, linear, not clamped to
-    /// white), when a render in rounds was asked to keep it and its pixels
-    /// are path-traced; `None` otherwise.
-    pub radiance: Option<Vec<f32>>,
 }
 
 impl BuiltScene {

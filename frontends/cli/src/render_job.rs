@@ -4,14 +4,28 @@
 //! [`crate::BuiltScene::render_in_rounds`], whatever the storage.
 
 use std::collections::TryReserveError;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use voxtrace::{
-    render, render_in_rounds, Camera, Framebuffer, PixelSamples, Rect, RenderOptions, RoundsDone,
-    Scene, Target,
+    render, render_in_rounds, Camera, Framebuffer, PixelSamples, RayStats, Rect, RenderOptions,
+    RoundsDone, Scene, Target,
 };
 
-use crate::pipeline::Rendered;
+/// A rendered region: its pixels (row-major, `pack`ed RGBA8) and what it
+/// cost.
+pub struct Rendered {
+    /// `region.width * region.height` pixels.
+    pub pixels: Vec<u32>,
+    /// Rays traced, by kind.
+    pub rays: RayStats,
+    /// Wall time of the render alone (no allocation of the scene, no
+    /// encoding).
+    pub elapsed: Duration,
+    /// Each pixel's mean radiance (three `f32`, linear, not clamped to
+    /// white), when a render in rounds was asked to keep it and its pixels
+    /// are path-traced; `None` otherwise.
+    pub radiance: Option<Vec<f32>>,
+}
 
 /// What a render draws and where it reports its rows.
 pub(crate) struct RenderJob<'a> {
