@@ -2,8 +2,8 @@
 //! [`Target`] (a caller's buffer on this thread, or the atomic
 //! framebuffer on the rayon pool), in one pass ([`render`]) or in rounds
 //! ([`render_in_rounds`]); both are one job ([`FrameJob`]) run with the
-//! kernel compiled for the frame's effects, which cuts the region into
-//! bands of rows and each band into tiles (`tiles.rs`). One pass is one
+//! kernel of the frame's look, which cuts the region into bands of rows
+//! and each band into tiles (`tiles.rs`). One pass is one
 //! round that takes every sample, so the two cannot disagree, and since no
 //! pixel depends on its band, tile or thread, every target, crop and
 //! thread count gives the same bytes.

@@ -110,8 +110,8 @@ impl Default for Lighting {
 }
 
 /// The look of a frame: which effects it simulates. Every effect is off
-/// unless asked for, and an effect that is off costs nothing per ray (the
-/// renderer picks a tracer compiled for the chosen set once per frame).
+/// unless asked for, and an effect that is off traces no ray (the kernel
+/// tests each effect once per sample).
 ///
 /// The default is the terrain's look: face shading under
 /// [`DEFAULT_SUN`], the sky gradient, one primary ray per pixel and nothing
