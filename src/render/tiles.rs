@@ -124,8 +124,8 @@ struct Blocks<'a, 's, K, S: ?Sized, P> {
 
 impl<K: Kernel, S: Scene + ?Sized, P: FnMut(u32, u32, u32)> Blocks<'_, '_, K, S, P> {
     /// The pixels of the lanes `lanes` of the block whose corner is at
-    /// offset `(bx, by)` in the rectangle, clear until its clear distance `clear`, in
-    /// arrays of `N` lanes ([`Kernel::block`]).
+    /// offset `(bx, by)` in the rectangle, whose rays are clear until
+    /// `clear`, in arrays of `N` lanes ([`Kernel::block`]).
     #[inline(always)]
     fn make<const N: usize>(&mut self, (bx, by): (u32, u32), lanes: u32, clear: f32) {
         let rect = self.rect;

@@ -164,17 +164,18 @@ impl BlockSamples<'_> {
     }
 }
 
-/// Computes pixels with one fixed set of effects.
+/// Computes the pixels of one look.
 pub(crate) trait Kernel: Sync {
-    /// The pixels of `block`, handed to `put(i, rgba)`, lowest lane first,
-    /// and the rays they traced, made in arrays of `N` lanes: [`crate::PACKET`] for an 8x4 block,
-    /// 1 for a lone pixel (lane 0 alone), so that a lone pixel fills no
-    /// block's arrays. Its walks may begin from what the previous block's left in
-    /// `memory`; a pixel is the same for any `clear` it is given and
-    /// any memory. `samples` is `None` in one pass (each pixel takes all
-    /// its samples); in a render in rounds, which only the path tracer
-    /// takes ([`Kernel::RESUMES`]), it holds each lane's samples so far,
-    /// and a lane that is done is not handed out.
+    /// The pixels of `block`, handed to `put(i, rgba)`, lowest lane
+    /// first, and the rays they traced. They are made in arrays of `N`
+    /// lanes: [`crate::PACKET`] for an 8x4 block, 1 for a lone pixel
+    /// (lane 0 alone), so that a lone pixel fills no block's arrays. The
+    /// walks may begin from what the previous block's left in `memory`;
+    /// a pixel is the same for any clear distance it is given and any
+    /// memory. `samples` is `None` in one pass (each pixel takes all its
+    /// samples); in a render in rounds, which only the path tracer takes
+    /// ([`Kernel::RESUMES`]), it holds each lane's samples so far, and a
+    /// lane that is done is not handed out.
     fn block<'s, S: Scene + ?Sized, const N: usize>(
         &self,
         scene: &'s S,
