@@ -15,7 +15,7 @@ use crate::scene::PACKET;
 mod block;
 mod refusal;
 #[cfg(test)]
-mod refusal_tests;
+mod tests;
 
 use refusal::{orthographic_refusal, perspective_refusal, OrthoPlane, FAR_APART};
 
