@@ -75,7 +75,7 @@ impl Kernel for Lit<'_, '_, '_> {
             for i in each_lane(lanes) {
                 let open = (open[i], open_together[i]);
                 let blocked = blocked >> i & 1 != 0;
-                let color = self.shade(&rays[i], hits[i], blocked, open, &mut stats);
+                let color = self.shade(&rays[i], hits[i].as_ref(), blocked, open, &mut stats);
                 let hit = hits[i].is_some();
                 match &mut means {
                     None => put(i, self.packed(color, hit)),
@@ -265,7 +265,7 @@ impl Lit<'_, '_, '_> {
     fn shade(
         &self,
         ray: &Ray,
-        hit: Option<Hit>,
+        hit: Option<&Hit>,
         blocked: bool,
         (open, together): (u32, u32),
         stats: &mut RayStats,
