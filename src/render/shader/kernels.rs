@@ -22,8 +22,8 @@ use crate::scene::{Reach, Scene, WalkMemory};
 
 impl FrameSetup<'_, '_> {
     /// Runs `job` with the kernel of this frame's look: the flat look, the
-    /// debug view, the path tracer (for the material kinds the plan
-    /// found) or the lit look.
+    /// debug view, the path tracer (when the plan path-traces) or the lit
+    /// look.
     pub(crate) fn dispatch<J: Job>(&self, job: J) -> J::Output {
         if self.options.flat {
             return job.run(&Flat(self));
