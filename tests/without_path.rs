@@ -8,8 +8,9 @@
 
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
-    render, Camera, CameraSettings, DenseScene, EffectPlan, FnSource, Fog, IAabb, Lighting, Look,
-    Material, Materials, Palette, PixelSamples, Rect, RenderOptions, Rounds, Scene, WithMaterials,
+    render, render_in_rounds, Camera, CameraSettings, DenseScene, EffectPlan, FnSource, Fog, IAabb,
+    Lighting, Look, Material, Materials, Palette, PixelSamples, Rect, RenderOptions, Rounds, Scene,
+    Target, WithMaterials,
 };
 
 /// The 32x24 camera of these frames.
@@ -24,7 +25,7 @@ fn camera() -> Camera {
 }
 
 /// The pixels of `scene`'s frame under `options`.
-fn frame<S: Scene>(scene: &S, options: &RenderOptions) -> Vec<u32> {
+fn frame<S: Scene + Sync>(scene: &S, options: &RenderOptions) -> Vec<u32> {
     let mut pixels = vec![0; 32 * 24];
     render(
         scene,
