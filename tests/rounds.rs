@@ -158,7 +158,7 @@ fn threads_and_crops_take_the_same_rounds_to_the_same_bytes() {
                                 full,
                                 Target::Framebuffer(&frame),
                                 &mut pixels,
-                                Some(&|_| {}),
+                                None,
                                 |n| n < stop,
                             )
                         })

@@ -11,9 +11,9 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-#[cfg(feature = "denoise")]
-use voxtrace::PixelSamples;
 use voxtrace::{render, Adaptive, Framebuffer, Rect, RenderOptions, Target};
+#[cfg(feature = "denoise")]
+use voxtrace::{render_in_rounds, PixelSamples};
 
 use crate::measure::{count_of, format_ms, median_ms};
 use crate::path_accuracy::{self, PathScene};
@@ -184,7 +184,7 @@ fn measure(
                 region,
                 Target::Framebuffer(&frame),
                 &mut state,
-                Some(&|_| {}),
+                None,
                 |_| true,
             )
             .map_err(|e| e.to_string())?;
