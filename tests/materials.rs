@@ -7,6 +7,7 @@
 
 mod common;
 
+use common::frames::scalar;
 use common::sources::clutter;
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
@@ -54,16 +55,7 @@ fn camera(from: Vec3, at: Vec3, size: u32, fov: f32) -> Camera {
 
 /// Renders and unpacks to RGB rows.
 fn frame<S: Scene + Sync>(scene: &S, camera: &Camera, options: &RenderOptions) -> Vec<[u8; 3]> {
-    let mut out = vec![0u32; (camera.width() * camera.height()) as usize];
-    render(
-        scene,
-        camera,
-        options,
-        Rect::full(camera),
-        Target::Buffer(&mut out),
-        None,
-    )
-    .unwrap();
+    let (out, _) = scalar(scene, camera, options);
     out.iter()
         .map(|&p| {
             let [r, g, b, _] = unpack(p);

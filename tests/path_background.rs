@@ -3,23 +3,17 @@
 //! (alpha covers the samples that hit), as in the face-shaded look; what
 //! the hits show does not change.
 
+mod common;
+
+use common::frames::scalar;
 use voxtrace::glam::{IVec3, U8Vec3, Vec3};
 use voxtrace::{
-    render, unpack, Background, Camera, CameraSettings, EffectPlan, FnSource, IAabb, Look,
-    Material, Materials, OctreeScene, Palette, Rect, RenderOptions, Scene, Target, WithMaterials,
+    unpack, Background, Camera, CameraSettings, EffectPlan, FnSource, IAabb, Look, Material,
+    Materials, OctreeScene, Palette, RenderOptions, Scene, WithMaterials,
 };
 
 fn frame<S: Scene + Sync>(scene: &S, camera: &Camera, options: &RenderOptions) -> Vec<[u8; 4]> {
-    let mut out = vec![0u32; (camera.width() * camera.height()) as usize];
-    render(
-        scene,
-        camera,
-        options,
-        Rect::full(camera),
-        Target::Buffer(&mut out),
-        None,
-    )
-    .unwrap();
+    let (out, _) = scalar(scene, camera, options);
     out.iter().map(|&p| unpack(p)).collect()
 }
 

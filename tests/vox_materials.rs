@@ -8,6 +8,9 @@
 use std::path::PathBuf;
 
 use dot_vox::{Color, DotVoxData, Material as VoxMaterial, Model, Size, Voxel};
+mod common;
+
+use common::frames::scalar;
 use voxtrace::glam::Vec3;
 use voxtrace::{
     render, Camera, CameraSettings, DenseScene, EffectPlan, Framebuffer, Look, MaterialKind,
@@ -245,26 +248,8 @@ fn material_renders_agree_across_backends_threads_and_crops() {
         let camera = view(&model, 64, 40);
         let octree = OctreeScene::build(&model, model.bounds()).unwrap();
         let dense = DenseScene::build(&model, model.bounds()).unwrap();
-        let mut a = vec![0u32; 64 * 40];
-        let mut b = vec![0u32; 64 * 40];
-        let sa = render(
-            &with(&octree, &model),
-            &camera,
-            &options,
-            Rect::full(&camera),
-            Target::Buffer(&mut a),
-            None,
-        )
-        .unwrap();
-        let sb = render(
-            &with(&dense, &model),
-            &camera,
-            &options,
-            Rect::full(&camera),
-            Target::Buffer(&mut b),
-            None,
-        )
-        .unwrap();
+        let (a, sa) = scalar(&with(&octree, &model), &camera, &options);
+        let (b, sb) = scalar(&with(&dense, &model), &camera, &options);
         assert!(a == b, "{name}: backends differ");
         assert_eq!(sa, sb, "{name}: ray counts differ");
         let frame = Framebuffer::new(64, 40).unwrap();
