@@ -93,8 +93,15 @@ pub(crate) fn render_tiles<K: Kernel, S: Scene + ?Sized>(
             #[cfg(not(feature = "packets"))]
             let in_blocks = false;
             if in_blocks {
-                for (bx, by, lanes) in blocks_of(tile) {
-                    blocks.make::<PACKET>((bx, by), lanes, clear);
+                // 8x4 blocks, row-major; one the tile's edge cuts has the
+                // mask of its lanes inside: `h` rows of `w` lanes each.
+                for by in (dy0..dy1).step_by(BLOCK_HEIGHT as usize) {
+                    let h = (dy1 - by).min(BLOCK_HEIGHT);
+                    for bx in (dx0..dx1).step_by(BLOCK_WIDTH as usize) {
+                        let row = u32::MAX >> (32 - (dx1 - bx).min(BLOCK_WIDTH));
+                        let lanes = (0..h).fold(0, |lanes, dy| lanes | row << (dy * BLOCK_WIDTH));
+                        blocks.make::<PACKET>((bx, by), lanes, clear);
+                    }
                 }
             } else {
                 // Lone pixels, row-major: lane 0 alone.
@@ -164,24 +171,6 @@ impl<K: Kernel, S: Scene + ?Sized, P: FnMut(u32, u32, u32)> Blocks<'_, '_, K, S,
                 .all(PixelSamples::is_done)
         }))
     }
-}
-
-/// The 8x4 blocks of `tile` (offsets inside the rectangle), row-major,
-/// each as its corner and lanes (one the tile's edge cuts has the mask of
-/// its lanes inside).
-fn blocks_of(tile: Rect) -> impl Iterator<Item = (u32, u32, u32)> {
-    let (width, height) = (BLOCK_WIDTH, BLOCK_HEIGHT);
-    // Offsets, which stay below the rectangle's size: no sum overflows.
-    let (dx1, dy1) = (tile.x + tile.width, tile.y + tile.height);
-    (tile.y..dy1).step_by(height as usize).flat_map(move |by| {
-        (tile.x..dx1).step_by(width as usize).map(move |bx| {
-            let (w, h) = ((dx1 - bx).min(width), (dy1 - by).min(height));
-            // `h` rows of `w` lanes each.
-            let row = u32::MAX >> (32 - w);
-            let lanes = (0..h).fold(0, |lanes, dy| lanes | row << (dy * BLOCK_WIDTH));
-            (bx, by, lanes)
-        })
-    })
 }
 
 /// Lane `i`'s offset from its block's corner.

@@ -29,8 +29,8 @@ use packets::{close, put, Bin};
 
 /// The lit look with the effects the frame asks for: shadows, ambient
 /// occlusion, fog and several samples per pixel, each tested once per
-/// sample (a copy of the kernel per set of effects saved under 3% of a
-/// render's instructions: benches/README.md).
+/// block and sample (a copy of the kernel per set of effects saved under
+/// 3% of a render's instructions: benches/README.md).
 pub(super) struct Lit<'s, 'c, 'm>(pub(super) &'s FrameSetup<'c, 'm>);
 
 impl Kernel for Lit<'_, '_, '_> {
@@ -42,7 +42,9 @@ impl Kernel for Lit<'_, '_, '_> {
     /// Sample by sample: the lanes' camera rays, then their hits' shadow
     /// rays ([`Lit::shadowed`]) and occlusion rays ([`Lit::open`]), then
     /// each lane shaded ([`Lit::shade`]); a pixel of one sample is packed
-    /// as it is shaded, one of several is their mean ([`Mean`]).
+    /// as it is shaded, one of several is their mean ([`Mean`]). Each
+    /// effect is tested once per sample of the block, not per lane, and a
+    /// frame without any ([`Lit::plain`]) packs each hit's face light.
     #[inline]
     fn block<'s, S: Scene + ?Sized, const N: usize>(
         &self,
@@ -64,21 +66,41 @@ impl Kernel for Lit<'_, '_, '_> {
             let rays = lane_rays(self.0.camera, corner, lanes, (!one_ray).then_some(s));
             let mut hits = [None; N];
             let together = trace_rays(scene, &rays, lanes, reach, memory, &mut hits);
-            let (blocked, shadows_together) = self.shadowed(scene, (&rays, &hits), lanes, memory);
-            let (open, open_together) = match self.0.options.occlusion {
-                Some(ao) => self.open(scene, ao, (corner, s), (&rays, &hits), lanes, memory),
-                None => ([0; N], [0; N]),
-            };
             stats.primary_rays += u64::from(lanes.count_ones());
-            let paired = together.count_ones() + shadows_together.count_ones();
-            stats.packet_rays += u64::from(paired);
+            stats.packet_rays += u64::from(together.count_ones());
+            if self.plain() {
+                // Each pixel packed from its hit alone (4.5% of the default
+                // look's render instructions: benches/README.md).
+                for i in each_lane(lanes) {
+                    let color = match &hits[i] {
+                        None => self.0.miss(sky(rays[i].dir())),
+                        Some(hit) => {
+                            stats.primary_hits += 1;
+                            pack(lit(hit.voxel.color, self.light(hit, false)))
+                        }
+                    };
+                    put(i, color);
+                }
+                continue;
+            }
+            let blocked = self.shadowed(scene, (&rays, &hits), lanes, memory, &mut stats);
+            let open = self.0.options.occlusion.map(|ao| {
+                let rays_hits = (&rays, &hits);
+                let open = self.open(scene, ao, (corner, s), rays_hits, lanes, memory, &mut stats);
+                (open, u32::from(ao.rays))
+            });
             for i in each_lane(lanes) {
-                let open = (open[i], open_together[i]);
-                let blocked = blocked >> i & 1 != 0;
-                let color = self.shade(&rays[i], hits[i].as_ref(), blocked, open, &mut stats);
+                let color = match &hits[i] {
+                    None => sky(rays[i].dir()),
+                    Some(hit) => {
+                        let open = open.as_ref().map(|&(ref open, rays)| (open[i], rays));
+                        self.shade(hit, blocked >> i & 1 != 0, open)
+                    }
+                };
                 let hit = hits[i].is_some();
+                stats.primary_hits += u64::from(hit);
                 match &mut means {
-                    None => put(i, self.packed(color, hit)),
+                    None => put(i, if hit { pack(color) } else { self.0.miss(color) }),
                     Some(means) => means[i].add(color, hit, self.0),
                 }
             }
@@ -140,6 +162,14 @@ impl Lit<'_, '_, '_> {
         }
     }
 
+    /// Whether a pixel is its hit's face light alone: one sample, and no
+    /// shadows, occlusion or fog (the default look).
+    #[inline]
+    fn plain(&self) -> bool {
+        let options = &self.0.options;
+        self.one_ray() && !options.shadows && options.occlusion.is_none() && options.fog.is_none()
+    }
+
     /// Whether the frame's hits send shadow rays.
     #[inline]
     fn shadows(&self) -> bool {
@@ -151,29 +181,33 @@ impl Lit<'_, '_, '_> {
     /// hit sends one when the frame has shadows and its face is turned to
     /// the sun and known ([`secondary`]). The rays walk from a copy of the
     /// camera rays' memory (the next pixels' camera rays begin from it):
-    /// several together ([`trace_rays`]), a lone lane's alone. Also
-    /// returns the lanes whose shadow ray was answered together.
-    #[inline]
+    /// several together ([`trace_rays`]), a lone lane's alone. Counts in
+    /// `stats` a shadow ray per hit on a sunlit face, and those answered
+    /// together.
+    #[inline(never)]
     fn shadowed<'s, S: Scene + ?Sized, const N: usize>(
         &self,
         scene: &'s S,
         (rays, hits): (&[Ray; N], &[Option<Hit>; N]),
         lanes: u32,
         memory: &WalkMemory<'s>,
-    ) -> (u32, u32) {
+        stats: &mut RayStats,
+    ) -> u32 {
         if !self.shadows() {
-            return (0, 0);
+            return 0;
         }
         let shader = self.0;
         let sunlit = |hit: &&Hit| shader.sunlit[face_index(hit.face)];
         let shadow = |i: usize| secondary(&rays[i], hits[i].as_ref().filter(sunlit)?, shader.sun);
+        let lit_faces = each_lane(lanes).filter(|&i| hits[i].as_ref().is_some_and(|h| sunlit(&h)));
+        stats.shadow_rays += lit_faces.count() as u64;
         let memory = &mut memory.clone();
         if lanes.is_power_of_two() {
             // A lone lane: no packet to fill.
             let i = lanes.trailing_zeros() as usize;
             let blocker =
                 shadow(i).and_then(|ray| scene.trace_with(&ray, Reach::ALL, memory, None).hit);
-            return (u32::from(blocker.is_some()) << i, 0);
+            return u32::from(blocker.is_some()) << i;
         }
         let (mut shadows, mut sent) = (*rays, 0u32);
         for i in each_lane(lanes) {
@@ -184,11 +218,9 @@ impl Lit<'_, '_, '_> {
         }
         let mut blockers = [None; N];
         let together = trace_rays(scene, &shadows, sent, Reach::ALL, memory, &mut blockers);
+        stats.packet_rays += u64::from(together.count_ones());
         let blocked = |i: usize| u32::from(blockers[i].is_some()) << i;
-        (
-            each_lane(sent).fold(0, |mask, i| mask | blocked(i)),
-            together,
-        )
+        each_lane(sent).fold(0, |mask, i| mask | blocked(i))
     }
 
     /// How many occlusion rays of each lane's hit (`hits[i]`, of the camera
@@ -196,9 +228,10 @@ impl Lit<'_, '_, '_> {
     /// `corner`) meet nothing within the reach of `ao`, one that cannot
     /// leave the face counted open (0 for a lane without a face): in
     /// packets by octant for close hits (`packets.rs`), else alone from a
-    /// copy of the camera ray's memory. Also returns how many of each
-    /// lane's rays were answered together.
-    #[inline]
+    /// copy of the camera ray's memory. Counts the rays in `stats`, and
+    /// those answered together.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
     fn open<'s, S: Scene + ?Sized, const N: usize>(
         &self,
         scene: &'s S,
@@ -207,7 +240,8 @@ impl Lit<'_, '_, '_> {
         (rays, hits): (&[Ray; N], &[Option<Hit>; N]),
         lanes: u32,
         memory: &WalkMemory<'s>,
-    ) -> ([u32; N], [u32; N]) {
+        stats: &mut RayStats,
+    ) -> [u32; N] {
         let mut open = [0u32; N];
         // Rays answered together: only packets answer any.
         #[cfg_attr(not(feature = "packets"), allow(unused_mut))]
@@ -220,6 +254,7 @@ impl Lit<'_, '_, '_> {
             let Some((hit, entered)) = hits[i].as_ref().and_then(|h| Some((h, h.face?))) else {
                 continue;
             };
+            stats.ao_rays += u64::from(ao.rays);
             let (x, y) = block_pixel(corner, i);
             for j in 0..u32::from(ao.rays) {
                 let Some(ray) = occlusion_ray(&rays[i], hit, entered, (x, y, sample), j) else {
@@ -241,59 +276,40 @@ impl Lit<'_, '_, '_> {
         for bin in bins.iter_mut().flatten() {
             bin.trace(scene, reach, memory, (&mut open, &mut together));
         }
-        (open, together)
+        stats.packet_rays += together.iter().map(|&n| u64::from(n)).sum::<u64>();
+        open
     }
 
-    /// A one-ray pixel's packed color from its shaded sample, which hit
-    /// a voxel or not.
+    /// The light out of 256 on the face of `hit`, in shadow where its
+    /// shadow ray was `blocked` (only a sunlit face's can be).
     #[inline]
-    fn packed(&self, color: U8Vec3, hit: bool) -> u32 {
-        if hit {
-            pack(color)
-        } else {
-            self.0.miss(color)
-        }
-    }
-
-    /// A sample's color: the camera ray `ray`'s hit `hit` in its face's
-    /// light, in shadow where its shadow ray was `blocked`
-    /// ([`Lit::shadowed`]), dimmed to the share of its occlusion rays that
-    /// are open (`open`: how many, and how many were answered together,
-    /// [`Lit::open`]), fogged by its distance; a miss is the sky in the
-    /// ray's direction. Its hit and secondary rays are counted in `stats`.
-    #[inline]
-    fn shade(
-        &self,
-        ray: &Ray,
-        hit: Option<&Hit>,
-        blocked: bool,
-        (open, together): (u32, u32),
-        stats: &mut RayStats,
-    ) -> U8Vec3 {
-        let shader = self.0;
-        let Some(hit) = hit else {
-            return sky(ray.dir());
-        };
-        stats.primary_hits += 1;
+    fn light(&self, hit: &Hit, blocked: bool) -> u32 {
         let face = face_index(hit.face);
-        let mut light = u32::from(shader.light[face]);
-        if self.shadows() && shader.sunlit[face] {
-            stats.shadow_rays += 1;
-            if blocked {
-                light = u32::from(shader.shadowed[face]);
-            }
-        }
-        if let (Some(_), Some(ao)) = (hit.face, shader.options.occlusion) {
-            let rays = u32::from(ao.rays);
-            stats.ao_rays += u64::from(rays);
-            stats.packet_rays += u64::from(together);
+        let table = if blocked {
+            &self.0.shadowed
+        } else {
+            &self.0.light
+        };
+        u32::from(table[face])
+    }
+
+    /// The color of a camera ray's hit `hit` in its face's light, in
+    /// shadow where its shadow ray was `blocked` ([`Lit::shadowed`]),
+    /// dimmed to the share of its occlusion rays that are open (`open`:
+    /// how many of how many, [`Lit::open`]; a hit without a face is not
+    /// dimmed), fogged by its distance.
+    #[inline]
+    fn shade(&self, hit: &Hit, blocked: bool, open: Option<(u32, u32)>) -> U8Vec3 {
+        let shader = self.0;
+        let mut light = self.light(hit, blocked);
+        if let (Some(_), Some((open, rays))) = (hit.face, open) {
             light = light * open / rays;
         }
-        let mut color = lit(hit.voxel.color, light);
-        if let Some(fog) = shader.options.fog {
-            color = fog_blend(color, hit.t, fog.distance);
+        let color = lit(hit.voxel.color, light);
+        match shader.options.fog {
+            Some(fog) => fog_blend(color, hit.t, fog.distance),
+            None => color,
         }
-        color
     }
 }
 
