@@ -184,7 +184,7 @@ impl Lit<'_, '_, '_> {
     /// several together ([`trace_rays`]), a lone lane's alone. Counts in
     /// `stats` a shadow ray per hit on a sunlit face, and those answered
     /// together.
-    #[inline(never)]
+    #[inline]
     fn shadowed<'s, S: Scene + ?Sized, const N: usize>(
         &self,
         scene: &'s S,
@@ -230,7 +230,7 @@ impl Lit<'_, '_, '_> {
     /// packets by octant for close hits (`packets.rs`), else alone from a
     /// copy of the camera ray's memory. Counts the rays in `stats`, and
     /// those answered together.
-    #[inline(never)]
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     fn open<'s, S: Scene + ?Sized, const N: usize>(
         &self,
