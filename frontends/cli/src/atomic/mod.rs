@@ -156,10 +156,12 @@ fn prepare(target: &Path) -> io::Result<Prepared> {
     let leads = |e| through_link(e, &real, target);
     let name = real.file_name().unwrap_or_default().to_os_string();
     let dir = Dir::open(parent_of(&real)).map_err(leads)?;
-    dir.check_writable().map_err(leads)?;
+    // The attributes first: an immutable folder is also unwritable, and
+    // its attribute is the reason to give.
     if let Some(why) = dir.unreplaceable(&name) {
         return Err(leads(io::Error::new(io::ErrorKind::PermissionDenied, why)));
     }
+    dir.check_writable().map_err(leads)?;
     Ok(Prepared::Replace { real, dir, name })
 }
 
