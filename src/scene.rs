@@ -289,6 +289,19 @@ pub trait Scene {
         together
     }
 
+    /// The solid voxel in `cell`, as the hit of a ray that starts strictly
+    /// inside it (no face, `t` 0), or `None` for an empty cell: a point
+    /// lookup, for a path that needs to know what lies across a face (a
+    /// path through glass). A storage may begin its lookup from `memory`
+    /// and leave there the way to `cell`; the default traces a ray from
+    /// the cell's center over no distance.
+    #[inline]
+    fn voxel_at<'s>(&'s self, cell: IVec3, memory: &mut WalkMemory<'s>) -> Option<Hit> {
+        let center = Ray::new(cell.as_vec3() + 0.5, glam::Vec3::X).ok()?;
+        self.trace_with(&center, Reach::within(0.0), memory, None)
+            .hit
+    }
+
     /// Bytes of voxel storage this scene holds (arrays and palette).
     fn storage_bytes(&self) -> usize;
 
@@ -366,6 +379,15 @@ macro_rules! forward_tracing {
             hits: &mut [Option<$crate::scene::Hit>; $crate::scene::PACKET],
         ) -> u32 {
             $inner(self).trace_packet(rays, lanes, reach, hits)
+        }
+
+        #[inline]
+        fn voxel_at<'s>(
+            &'s self,
+            cell: glam::IVec3,
+            memory: &mut $crate::scene::WalkMemory<'s>,
+        ) -> Option<$crate::scene::Hit> {
+            $inner(self).voxel_at(cell, memory)
         }
 
         fn storage_bytes(&self) -> usize {

@@ -137,3 +137,51 @@ fn rays_sharing_an_origin_share_only_what_their_start_rule_shares() {
         );
     }
 }
+
+/// `voxel_at`, a point lookup, is the voxel a ray starting inside the cell
+/// meets over no distance, on both backends, for cells inside and outside
+/// the volume, with one memory shared by lookups and walks in any order
+/// (neither changes what the other answers).
+#[test]
+fn a_cells_voxel_is_its_probe_rays_hit_whatever_the_memory() {
+    let bounds = IAabb::new(IVec3::new(-20, -12, -16), IVec3::new(20, 16, 24));
+    let mut rng = Rng::new(0x5eed_0004);
+    for (seed, percent) in [(21, 5), (22, 40)] {
+        let source = speckle(seed, percent);
+        let octree = OctreeScene::build(&source, bounds).unwrap();
+        let dense = DenseScene::build(&source, bounds).unwrap();
+        let rays = run_of_rays(&mut rng, &bounds, 2000);
+        let (mut in_octree, mut in_dense) = (WalkMemory::new(), WalkMemory::new());
+        let mut solid = 0;
+        for (i, ray) in rays.iter().enumerate() {
+            // A cell near the last walk's hit (where a path looks next),
+            // or anywhere around the volume.
+            let near = octree.trace_counted(ray).hit.map(|h| h.pos);
+            let cell = match near {
+                Some(pos) if rng.below(4) != 0 => {
+                    pos + IVec3::new(rng.int(-2, 2), rng.int(-2, 2), rng.int(-2, 2))
+                }
+                _ => IVec3::new(rng.int(-22, 22), rng.int(-14, 18), rng.int(-18, 26)),
+            };
+            let probe = Ray::new(cell.as_vec3() + 0.5, Vec3::new(0.3, -0.8, 0.5)).unwrap();
+            let expected = octree.trace_within(&probe, 0.0);
+            assert_eq!(
+                octree.voxel_at(cell, &mut in_octree),
+                expected,
+                "{i}: {cell}"
+            );
+            assert_eq!(dense.voxel_at(cell, &mut in_dense), expected, "{i}: {cell}");
+            solid += usize::from(expected.is_some());
+            let walked = octree.trace_with(ray, Reach::after(0.0), &mut in_octree, None);
+            assert_eq!(
+                walked.hit,
+                octree.trace_counted(ray).hit,
+                "ray {i}: {ray:?}"
+            );
+        }
+        assert!(
+            solid > 100,
+            "only {solid} of the cells looked up were solid"
+        );
+    }
+}

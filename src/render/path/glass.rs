@@ -16,7 +16,8 @@ use crate::render::path::bsdf::{fresnel_dielectric, microfacet, reflect, refract
 use crate::render::path::Rng;
 use crate::render::rays::{nudge, secondary};
 use crate::render::stats::RayStats;
-use crate::scene::{Hit, Scene};
+use crate::scene::{Hit, Scene, WalkMemory};
+use crate::storage::walk::Start;
 
 /// The most voxels one pass through glass walks before the path is given
 /// up (a bound on the loop; real panes are a few voxels thick).
@@ -130,6 +131,9 @@ fn walk<S: Scene + ?Sized>(
     rng: &mut Rng,
     stats: &mut RayStats,
 ) -> Glass {
+    // The path's lookups of the cells it crosses, each beginning where
+    // the last one's descent went.
+    let mut cells = WalkMemory::new();
     for _ in 0..MAX_GLASS_VOXELS {
         // The face of `cell` the ray leaves through: the nearest plane
         // crossing, the lowest axis on a tie.
@@ -154,15 +158,16 @@ fn walk<S: Scene + ?Sized>(
         exit[axis] = plane;
         let mut next = cell;
         next[axis] += if positive { 1 } else { -1 };
-        // What lies beyond the face: a ray starting just inside `next`
-        // that reaches no farther than its start.
+        // What lies beyond the face: the voxel a ray starting just inside
+        // `next` meets at its start, if it starts in `next` (by the walk's
+        // start rule, at an edge it may start beside it: nothing beyond).
         let step = nudge(plane);
         let mut probe_at = exit;
         probe_at[axis] = plane + if positive { step } else { -step };
         let beyond = Ray::new(probe_at, dir)
             .ok()
-            .and_then(|probe| scene.trace_within(&probe, 0.0))
-            .filter(|h| h.pos == next);
+            .filter(|probe| Start::of(probe).cell == next)
+            .and_then(|_| scene.voxel_at(next, &mut cells));
         if let Some(other) = beyond {
             let m = materials.get(other.material);
             if m.kind() == MaterialKind::Glass && m.transparency() > 0.0 {

@@ -7,7 +7,7 @@ use glam::IVec3;
 
 use crate::error::Error;
 use crate::geom::{IAabb, Ray};
-use crate::scene::{Reach, Scene, Traced, Visit, WalkMemory};
+use crate::scene::{Hit, Reach, Scene, Traced, Visit, WalkMemory};
 use crate::voxel::{Palette, VoxelSource};
 
 mod walk;
@@ -201,6 +201,11 @@ impl<B: AsRef<[u8]>> Scene for DenseScene<B> {
                 }
             }
         }
+    }
+
+    /// The array's cell, read directly.
+    fn voxel_at<'s>(&'s self, cell: IVec3, _memory: &mut WalkMemory<'s>) -> Option<Hit> {
+        Hit::from_palette(&self.palette, cell, None, 0.0, self.material(cell))
     }
 
     fn storage_bytes(&self) -> usize {

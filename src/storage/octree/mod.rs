@@ -16,8 +16,8 @@ use glam::IVec3;
 use crate::frustum::Frustum;
 use crate::geom::{IAabb, Ray};
 #[cfg(feature = "packets")]
-use crate::scene::{Hit, PACKET};
-use crate::scene::{Reach, Scene, Traced, Visit, WalkMemory};
+use crate::scene::PACKET;
+use crate::scene::{Hit, Reach, Scene, Traced, Visit, WalkMemory};
 use crate::storage::octree::node::{brick_local, child_offset, NodeKind, BRICK};
 use crate::voxel::Palette;
 
@@ -177,6 +177,12 @@ impl<N: AsRef<[Node]>, M: AsRef<[u8]>> Scene for OctreeScene<N, M> {
         hits: &mut [Option<Hit>; PACKET],
     ) -> u32 {
         self.packet(rays, lanes, reach, hits)
+    }
+
+    /// A descent to `cell` from the deepest node `memory` recalls.
+    fn voxel_at<'s>(&'s self, cell: IVec3, memory: &mut WalkMemory<'s>) -> Option<Hit> {
+        let material = self.material_with(cell, memory);
+        Hit::from_palette(&self.palette, cell, None, 0.0, material)
     }
 
     fn storage_bytes(&self) -> usize {
