@@ -34,9 +34,6 @@ mod read;
 mod walk;
 mod write;
 
-#[cfg(test)]
-mod tests;
-
 pub use digest::PartDigest;
 pub use placement::{fnv1a64, settings_text, Placement};
 pub use read::read_part;
