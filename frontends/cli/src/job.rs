@@ -110,7 +110,7 @@ impl Job<'_> {
             0
         };
         let encoder = encoder + denoise + rounds;
-        let bounds = self.subject.bounds();
+        let bounds = self.subject.shown.bounds();
         let loaded = self.subject.loaded();
         memory::budget(self.backend, bounds, loaded, (pixels, encoder), max_memory)
             .check(self.backend)
@@ -338,7 +338,7 @@ impl Job<'_> {
         } = *totals;
         // One camera ray per sample: what adaptive sampling spent.
         let samples_per_pixel = rays.primary_rays as f64 / pixels.max(1) as f64;
-        let bounds = self.subject.bounds();
+        let bounds = self.subject.shown.bounds();
         let ms = |d: Duration| d.as_secs_f64() * 1e3;
         let mrays = rays.primary_rays as f64 / render.as_secs_f64().max(1e-9) / 1e6;
         let v = |v: voxtrace::glam::IVec3| format!("{},{},{}", v.x, v.y, v.z);

@@ -9,36 +9,14 @@
 use std::collections::TryReserveError;
 use std::time::{Duration, Instant};
 
-use clap::ValueEnum;
-
 use crate::units::human_bytes;
 use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{
-    render, render_in_rounds, Camera, DenseScene, Error, Framebuffer, IAabb, Node, OctreeScene,
-    PixelSamples, RayStats, Rect, RenderOptions, RoundsDone, Scene, SceneMaterials, Target,
-    VoxelGenerator, VoxelSource, WithMaterials,
+    render, render_in_rounds, Camera, Error, Framebuffer, IAabb, PixelSamples, RayStats, Rect,
+    RenderOptions, RoundsDone, Scene, SceneMaterials, Target, VoxelGenerator, VoxelSource,
 };
-
-/// Which storage holds the voxels.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, ValueEnum)]
-pub enum Backend {
-    /// Flat array, one byte per voxel, Amanatides & Woo traversal.
-    Dense,
-    /// Sparse pointer-free octree (alias: sparse).
-    #[value(alias = "sparse")]
-    Octree,
-}
-
-impl Backend {
-    /// The name users type: `dense` or `octree`.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        match self {
-            Backend::Dense => "dense",
-            Backend::Octree => "octree",
-        }
-    }
-}
+pub use voxtrace_flags::Backend;
+use voxtrace_flags::{Built, Tracer};
 
 /// Runs `work` with `threads` workers: on the calling thread for `Some(1)`,
 /// otherwise inside a new rayon pool of that many threads (`None`: one per
@@ -60,13 +38,9 @@ pub fn on_threads<R: Send>(
     }
 }
 
-/// A storage built from the terrain, either kind.
-pub enum BuiltScene {
-    /// The flat array.
-    Dense(DenseScene<Vec<u8>>),
-    /// The sparse octree.
-    Octree(OctreeScene<Vec<Node>, Vec<u8>>),
-}
+/// A storage of either kind, built and rendered as the CLI does: errors
+/// in one line, the build and the render timed.
+pub struct BuiltScene(pub Built);
 
 impl BuiltScene {
     /// Builds `backend` over the volume `[-size, size)^3` of the terrain of
@@ -74,8 +48,7 @@ impl BuiltScene {
     /// the build's wall time.
     ///
     /// # Errors
-    /// A one-line message; for a dense array that cannot be allocated it
-    /// names the bytes it needs.
+    /// As [`BuiltScene::build_from`].
     pub fn build(
         backend: Backend,
         size: i32,
@@ -100,57 +73,35 @@ impl BuiltScene {
         threaded: bool,
     ) -> Result<(BuiltScene, Duration), String> {
         let started = Instant::now();
-        let describe = |e: Error| match e {
-            Error::OutOfMemory { bytes } => format!(
+        let built = Built::build(backend, source, bounds, threaded);
+        let built = built.map_err(|e| match (backend, e) {
+            (Backend::Dense, Error::OutOfMemory { .. } | Error::SizeOverflow) => {
+                // Exact even when it overflows usize: one byte per voxel.
+                let size = bounds.size();
+                let bytes: u128 = [size.x, size.y, size.z]
+                    .iter()
+                    .map(|&s| u128::from(s.unsigned_abs()))
+                    .product();
+                format!(
+                    "the dense array for this scene needs {} (one per voxel), \
+                     more than can be allocated; try --backend octree",
+                    human_bytes(bytes)
+                )
+            }
+            (_, Error::OutOfMemory { bytes }) => format!(
                 "cannot build the {} scene: out of memory: could not allocate {}",
                 backend.name(),
                 human_bytes(bytes as u128)
             ),
-            e => format!("cannot build the {} scene: {e}", backend.name()),
-        };
-        let scene = match backend {
-            Backend::Dense => {
-                let built = if threaded {
-                    DenseScene::build_parallel(source, bounds)
-                } else {
-                    DenseScene::build(source, bounds)
-                };
-                BuiltScene::Dense(built.map_err(|e| match e {
-                    Error::OutOfMemory { .. } | Error::SizeOverflow => {
-                        // Exact even when it overflows usize: one byte per voxel.
-                        let size = bounds.size();
-                        let bytes: u128 = [size.x, size.y, size.z]
-                            .iter()
-                            .map(|&s| u128::from(s.unsigned_abs()))
-                            .product();
-                        format!(
-                            "the dense array for this scene needs {} (one per voxel), \
-                             more than can be allocated; try --backend octree",
-                            human_bytes(bytes)
-                        )
-                    }
-                    e => describe(e),
-                })?)
-            }
-            Backend::Octree => {
-                let built = if threaded {
-                    OctreeScene::build_parallel(source, bounds)
-                } else {
-                    OctreeScene::build(source, bounds)
-                };
-                BuiltScene::Octree(built.map_err(describe)?)
-            }
-        };
-        Ok((scene, started.elapsed()))
+            (_, e) => format!("cannot build the {} scene: {e}", backend.name()),
+        })?;
+        Ok((BuiltScene(built), started.elapsed()))
     }
 
     /// The storage as the tracer sees it.
     #[must_use]
     pub fn scene(&self) -> &(dyn Scene + Sync) {
-        match self {
-            BuiltScene::Dense(scene) => scene,
-            BuiltScene::Octree(scene) => scene,
-        }
+        self.0.scene()
     }
 
     /// Renders `region` of `camera`'s frame of the storage shaded with
@@ -177,8 +128,9 @@ impl BuiltScene {
             options,
             threaded,
             progress,
+            pass: Pass::Once,
         };
-        let (rendered, _) = self.run(materials, &job, Pass::Once)?;
+        let (rendered, _) = self.0.trace(materials, job)?;
         Ok(rendered)
     }
 
@@ -212,36 +164,16 @@ impl BuiltScene {
             options,
             threaded,
             progress,
+            pass: Pass::Rounds {
+                keep_going,
+                keep_radiance,
+            },
         };
-        let pass = Pass::Rounds {
-            keep_going,
-            keep_radiance,
-        };
-        let (rendered, done) = self.run(materials, &job, pass)?;
+        let (rendered, done) = self.0.trace(materials, job)?;
         Ok((
             rendered,
             done.expect("a render in rounds reports its rounds"),
         ))
-    }
-
-    /// Runs `job` on the storage shaded with `materials`, monomorphized
-    /// per storage and materials: the hot loop never calls through `dyn`.
-    fn run(
-        &self,
-        materials: Option<SceneMaterials<'_>>,
-        job: &RenderJob<'_>,
-        pass: Pass<'_>,
-    ) -> Result<(Rendered, Option<RoundsDone>), String> {
-        match (self, materials) {
-            (BuiltScene::Dense(scene), None) => job.run(scene, pass),
-            (BuiltScene::Octree(scene), None) => job.run(scene, pass),
-            (BuiltScene::Dense(scene), Some(m)) => {
-                job.run(&WithMaterials::new(scene, m.table, m.emitters), pass)
-            }
-            (BuiltScene::Octree(scene), Some(m)) => {
-                job.run(&WithMaterials::new(scene, m.table, m.emitters), pass)
-            }
-        }
     }
 }
 
@@ -265,7 +197,8 @@ pub struct Rendered {
     pub radiance: Option<Vec<f32>>,
 }
 
-/// What a render draws and where it reports its rows.
+/// What a render draws, where it reports its rows and how it takes its
+/// samples: run on each storage and materials by [`Built::trace`].
 struct RenderJob<'a> {
     camera: &'a Camera,
     region: Rect,
@@ -273,6 +206,7 @@ struct RenderJob<'a> {
     /// On the current rayon pool, else the scalar path on this thread.
     threaded: bool,
     progress: &'a (dyn Fn(u32) + Sync),
+    pass: Pass<'a>,
 }
 
 /// How a [`RenderJob`] takes its samples.
@@ -287,23 +221,22 @@ enum Pass<'k> {
     },
 }
 
-impl RenderJob<'_> {
-    /// Renders `scene` as it is, in `pass`; the rounds taken with
+impl Tracer for RenderJob<'_> {
+    type Output = Result<(Rendered, Option<RoundsDone>), String>;
+
+    /// Renders `scene` as it is, in the job's pass; the rounds taken with
     /// [`Pass::Rounds`]. The time counted is the render's and its
     /// frame's (zeroed on the pool, as the render writes it), not the
     /// samples kept between rounds.
-    fn run<S: Scene + Sync>(
-        &self,
-        scene: &S,
-        pass: Pass<'_>,
-    ) -> Result<(Rendered, Option<RoundsDone>), String> {
+    fn trace<S: Scene + Sync>(self, scene: &S) -> Self::Output {
         let RenderJob {
             camera,
             region,
             options,
             threaded,
             progress,
-        } = *self;
+            pass,
+        } = self;
         let between = matches!(pass, Pass::Rounds { .. });
         let no_memory = || {
             format!(

@@ -51,18 +51,16 @@ pub fn measured_default(
     if explicit || flags.aim != Aim::Default {
         return flags;
     }
-    let stage = subject.stage();
-    let fov = match (subject, stage.default_position) {
-        (Subject::Model { .. }, _) => MODEL_FOV,
-        (Subject::Terrain { .. }, Some(position)) if !blocked(subject, position, stage.target) => {
-            return flags;
-        }
-        (Subject::Terrain { .. }, _) => flags.fov,
+    let stage = subject.shown.stage();
+    let fov = match (subject.shown.model(), stage.default_position) {
+        (Some(_), _) => MODEL_FOV,
+        (None, Some(position)) if !blocked(subject, position, stage.target) => return flags,
+        (None, _) => flags.fov,
     };
     let lens = CameraFlags { fov, ..flags };
     let budget = memory::budget(
         Backend::Octree,
-        subject.bounds(),
+        subject.shown.bounds(),
         subject.loaded(),
         (0, 0),
         max_memory,
@@ -84,5 +82,6 @@ pub fn measured_default(
 /// `subject`: it starts inside a solid voxel, or on its target.
 fn blocked(subject: &Subject<'_>, position: Vec3, target: Vec3) -> bool {
     let cell = position.floor().as_ivec3();
-    position == target || (subject.bounds().contains(cell) && subject.material(cell) != 0)
+    position == target
+        || (subject.shown.bounds().contains(cell) && subject.shown.material(cell) != 0)
 }
