@@ -22,7 +22,7 @@ pub mod image_error;
 pub mod part;
 mod pipeline;
 pub mod room;
-mod settings_diff;
+pub mod settings_diff;
 pub mod stitch;
 pub mod tiles;
 mod units;
