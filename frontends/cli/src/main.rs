@@ -15,7 +15,6 @@ mod output;
 mod progress;
 mod subject;
 mod view;
-mod vox_camera;
 
 use std::ffi::OsString;
 use std::io::Write;

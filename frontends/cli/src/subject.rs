@@ -7,12 +7,14 @@
 use std::path::Path;
 use std::time::Duration;
 
-use voxtrace::SceneMaterials;
+use voxtrace::{SceneMaterials, VoxModel};
 use voxtrace_cli::errors::show_path;
 use voxtrace_cli::part::fnv1a64;
 use voxtrace_cli::{Backend, BuiltScene};
 
-use crate::vox_camera::FileCameras;
+/// The cameras `--camera` may pick from: the `.vox` file's path and the
+/// scene loaded from it; `None` for the terrain.
+pub type FileCameras<'a> = Option<(&'a Path, &'a VoxModel)>;
 
 /// What the CLI renders.
 pub struct Subject<'a> {
