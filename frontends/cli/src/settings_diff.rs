@@ -4,7 +4,7 @@
 //! A settings text (see [`crate::part::settings_text`]) is `key=value`
 //! words whose values are `[...]` groups of `key=value` words or Rust
 //! `Debug` forms (`Name { field: value, ... }`): a tree of named fields.
-//! The setting named is the first of [`FLAGS`] whose values differ, shown
+//! The setting named is the first of `FLAGS` whose values differ, shown
 //! down to the field inside it that differs.
 
 /// The flag, or what else decides it, of each field path of a settings

@@ -20,12 +20,8 @@ use super::Placement;
 /// 5. the SHA-256 (32 bytes) of the image data as stored: the data of the
 ///    `IDAT` chunks, one after another.
 ///
-/// The pixels make it a check of what the part shows, whatever decoded
-/// it; the stored image data, of every bit of the compressed stream, even
-/// those no decoder reads (the padding before a stored block or after the
-/// last); the placement and settings, that a part's pixels cannot be
-/// passed off as another tile's, another frame's or another render's, even
-/// when they are the same size.
+/// So every bit of the stored stream counts, and no part's pixels pass for
+/// another tile's, frame's or render's (docs/farm.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PartDigest(pub [u8; 32]);
 
