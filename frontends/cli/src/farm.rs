@@ -137,9 +137,6 @@ pub fn select(
 /// `out` with every `%t` replaced by tile `tile` of `count`, as
 /// [`tile_name`] numbers it; the rest kept byte for byte, UTF-8 or not.
 fn tile_path(out: &Path, tile: u32, count: u32) -> PathBuf {
-    if let Some(pattern) = out.to_str() {
-        return PathBuf::from(tile_name(pattern, tile, count));
-    }
     let number = tile_name("%t", tile, count);
     let mut bytes = Vec::new();
     let mut rest = out.as_os_str().as_encoded_bytes();

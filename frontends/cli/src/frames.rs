@@ -37,18 +37,6 @@ impl FrameRange {
         self.first..=self.last
     }
 
-    /// How many frames the range holds.
-    #[must_use]
-    pub fn len(self) -> u32 {
-        self.last - self.first + 1
-    }
-
-    /// Always false: a range holds at least one frame.
-    #[must_use]
-    pub fn is_empty(self) -> bool {
-        false
-    }
-
     /// An error unless the range lies within an animation of `frames`
     /// frames.
     pub fn check_within(self, frames: u32) -> Result<(), String> {

@@ -576,6 +576,37 @@ mod part_file {
             assert_eq!((&read.placement, &read.pixels), (&placement, &pixels));
         }
     }
+
+    #[test]
+    fn fnv1a64_matches_the_published_vectors() {
+        // From the FNV reference test suite (Noll): "", "a", "foobar".
+        assert_eq!(fnv1a64(b""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(fnv1a64(b"a"), 0xaf63_dc4c_8601_ec8c);
+        assert_eq!(fnv1a64(b"foobar"), 0x8594_4171_f739_67e8);
+    }
+
+    #[test]
+    fn digests_read_back_and_refuse_what_is_not_one() {
+        let digest = PartDigest(core::array::from_fn(|i| i as u8 * 8));
+        assert_eq!(PartDigest::parse(&digest.to_text()), Ok(digest));
+        // Exactly as written: another case is another text.
+        let upper = digest.to_text().to_uppercase().replace("SHA256", "sha256");
+        assert!(PartDigest::parse(&upper).is_err());
+        for bad in [
+            "",
+            "sha256:",
+            "sha256:00",
+            "md5:00",
+            "sha256:+0",
+            "sha256:é",
+        ] {
+            assert!(PartDigest::parse(bad).is_err(), "{bad}");
+        }
+        let long = format!("sha256:{}", "0".repeat(65));
+        assert!(PartDigest::parse(&long).is_err());
+        let not_hex = format!("sha256:{}", "g".repeat(64));
+        assert!(PartDigest::parse(&not_hex).is_err());
+    }
 }
 
 /// `--frames` and `--frame-range`: ranges, file names and the turntable.
