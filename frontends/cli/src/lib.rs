@@ -29,8 +29,8 @@ mod units;
 
 pub use export::{export_vox, terrain_box};
 pub use frames::{frame_path, parse_frame_range, turntable, FrameRange};
-// The framing is the shared crate's (the web page frames the same way);
-// the CLI's tests check it through the CLI.
 pub use pipeline::{mean_radiance, on_threads, Backend, BuiltScene, Rendered, ROUND_STATE_BYTES};
 pub use units::human_bytes;
+/// The framing is the shared crate's (the web page frames the same way);
+/// the CLI's tests check it through the CLI.
 pub use voxtrace_flags::framing;
