@@ -1,21 +1,12 @@
-//! What the renderer is given beside the options (a `.vox` file's
-//! materials), and a note for each flag or effect that changes nothing, so
-//! that a user is not left wondering why. The options themselves are the
+//! A note for each flag or effect that changes nothing, so that a user is
+//! not left wondering why. The options themselves are the
 //! shared crate's ([`voxtrace_flags::render_options`]), from
 //! [`Args::effects`](crate::args::Args::effects).
 
-use voxtrace::{CameraSettings, Projection, RenderOptions, SceneMaterials, VoxModel};
+use voxtrace::{CameraSettings, Projection, RenderOptions};
 
 use crate::args::GivenFlags;
 use crate::output;
-
-/// A model's materials and light list as the renderer takes them.
-pub(crate) fn materials_of(model: &VoxModel) -> SceneMaterials<'_> {
-    SceneMaterials {
-        table: model.materials(),
-        emitters: model.emitters(),
-    }
-}
 
 /// Notes for flags a path-traced frame does not use (it lights with its
 /// own light rays and bounces).

@@ -84,21 +84,9 @@ pub fn check_flags(
     Ok(())
 }
 
-/// What a tile's settings hash names of the scene.
-pub enum TileScene<'a> {
-    /// A `.vox` file, hashed whole (read only when a tile is rendered).
-    Vox(&'a Path),
-    /// The terrain of `--seed` and `--size`.
-    Terrain {
-        /// The terrain's seed.
-        seed: u64,
-        /// Its extent N: the volume is `[-N, N)^3`.
-        size: i32,
-    },
-}
-
-/// The tile `farm` asks for, if any, of `camera`'s frame of `scene` in
-/// `backend` with `options`, written to `out` (`%t`: the tile number).
+/// The tile `farm` asks for, if any, of `camera`'s frame in `backend`
+/// with `options`, written to `out` (`%t`: the tile number); `scene` says
+/// what its settings text names of the scene (read only for a tile).
 /// Called after [`check_flags`]; the output checks that the part's format
 /// is PNG.
 ///
@@ -110,7 +98,7 @@ pub fn select(
     farm: &TileArgs,
     camera: &Camera,
     options: &RenderOptions,
-    scene: TileScene<'_>,
+    scene: &dyn Fn() -> Result<String, String>,
     backend: Backend,
     out: &Path,
 ) -> Result<Option<TileJob>, String> {
@@ -127,14 +115,7 @@ pub fn select(
         .tile(width, height, tile)
         .ok_or("the tile index is out of range")?; // resolve checked it
 
-    let subject = match scene {
-        TileScene::Vox(path) => {
-            let bytes = std::fs::read(path)
-                .map_err(|e| format!("cannot load --vox {}: {e}", show_path(path)))?;
-            format!("vox fnv1a64={:016x}", fnv1a64(&bytes))
-        }
-        TileScene::Terrain { seed, size } => format!("terrain seed={seed} size={size}"),
-    };
+    let subject = scene()?;
     let settings = settings_text(&subject, backend.name(), camera, options);
     let out = tile_path(out, tile, grid.count());
     let placement = Placement {
@@ -156,9 +137,6 @@ pub fn select(
 /// `out` with every `%t` replaced by tile `tile` of `count`, as
 /// [`tile_name`] numbers it; the rest kept byte for byte, UTF-8 or not.
 fn tile_path(out: &Path, tile: u32, count: u32) -> PathBuf {
-    if let Some(pattern) = out.to_str() {
-        return PathBuf::from(tile_name(pattern, tile, count));
-    }
     let number = tile_name("%t", tile, count);
     let mut bytes = Vec::new();
     let mut rest = out.as_os_str().as_encoded_bytes();

@@ -37,18 +37,6 @@ impl FrameRange {
         self.first..=self.last
     }
 
-    /// How many frames the range holds.
-    #[must_use]
-    pub fn len(self) -> u32 {
-        self.last - self.first + 1
-    }
-
-    /// Always false: a range holds at least one frame.
-    #[must_use]
-    pub fn is_empty(self) -> bool {
-        false
-    }
-
     /// An error unless the range lies within an animation of `frames`
     /// frames.
     pub fn check_within(self, frames: u32) -> Result<(), String> {
@@ -134,65 +122,5 @@ pub fn turntable(base: CameraSettings, frame: u32, frames: u32) -> CameraSetting
     CameraSettings {
         lookfrom: base.lookat + turned,
         ..base
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn ranges_parse_and_reject_garbage() {
-        assert_eq!(
-            parse_frame_range("3-5"),
-            Ok(FrameRange { first: 3, last: 5 })
-        );
-        assert_eq!(parse_frame_range("7"), Ok(FrameRange { first: 7, last: 7 }));
-        for bad in ["0-3", "5-3", "a-b", "-3", "3-", "", "1-2-3"] {
-            assert!(parse_frame_range(bad).is_err(), "{bad}");
-        }
-        assert!(FrameRange { first: 3, last: 9 }.check_within(8).is_err());
-        assert!(FrameRange { first: 3, last: 8 }.check_within(8).is_ok());
-    }
-
-    #[test]
-    fn hashes_become_padded_frame_numbers() {
-        let p = |s: &str, f| frame_path(Path::new(s), f).map(|p| p.display().to_string());
-        assert_eq!(p("out/spin_####.png", 7).unwrap(), "out/spin_0007.png");
-        assert_eq!(p("a#b#.png", 12).unwrap(), "a#b12.png");
-        assert_eq!(p("f##.png", 123).unwrap(), "f123.png");
-        assert_eq!(p("dir#/f#", 3).unwrap(), "dir#/f3");
-        assert!(p("dir#/spin.png", 1).is_err());
-    }
-
-    #[cfg(unix)]
-    #[test]
-    fn a_name_that_is_not_utf8_keeps_its_bytes() {
-        use std::os::unix::ffi::OsStrExt;
-        let pattern = Path::new(OsStr::from_bytes(b"d\xfe/s\xff_##\x80.png"));
-        let path = frame_path(pattern, 7).unwrap();
-        assert_eq!(path.as_os_str().as_bytes(), b"d\xfe/s\xff_07\x80.png");
-        let error = frame_path(Path::new(OsStr::from_bytes(b"s\xff.png")), 1).unwrap_err();
-        assert!(error.contains("--out s\\xff.png needs"), "{error}");
-    }
-
-    #[test]
-    fn a_turntable_comes_back_around() {
-        let base = CameraSettings {
-            lookfrom: Vec3::new(0.0, 5.0, 10.0),
-            lookat: Vec3::new(0.0, 5.0, 0.0),
-            ..CameraSettings::default()
-        };
-        assert_eq!(turntable(base, 1, 4), base);
-        let quarter = turntable(base, 2, 4).lookfrom;
-        assert!(
-            (quarter - Vec3::new(10.0, 5.0, 0.0)).length() < 1e-5,
-            "{quarter}"
-        );
-        let half = turntable(base, 3, 4).lookfrom;
-        assert!(
-            (half - Vec3::new(0.0, 5.0, -10.0)).length() < 1e-5,
-            "{half}"
-        );
     }
 }

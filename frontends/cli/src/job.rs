@@ -110,7 +110,7 @@ impl Job<'_> {
             0
         };
         let encoder = encoder + denoise + rounds;
-        let bounds = self.subject.bounds();
+        let bounds = self.subject.shown.bounds();
         let loaded = self.subject.loaded();
         memory::budget(self.backend, bounds, loaded, (pixels, encoder), max_memory)
             .check(self.backend)
@@ -200,7 +200,7 @@ impl Job<'_> {
                 storage_bytes: built.scene().storage_bytes(),
                 rounds: Vec::new(),
             };
-            for (frame, path) in cameras.iter().zip(paths) {
+            let rendered = cameras.iter().zip(paths).try_for_each(|(frame, path)| {
                 let camera = &frame.camera;
                 // The rows this frame reported: a render in rounds that
                 // ends early (or the scalar path's last round) reports
@@ -213,46 +213,25 @@ impl Job<'_> {
                 let rendered = self.render_one(&built, materials, camera, &advance);
                 let counted = region.height.saturating_mul(most);
                 progress.advance(counted.saturating_sub(reported.into_inner()));
-                let mut rendered = match rendered {
-                    Ok((r, rounds)) => {
-                        totals.rounds.extend(rounds);
-                        r
-                    }
-                    Err(e) => {
-                        progress.finish();
-                        return Err(e);
-                    }
-                };
+                let (mut rendered, rounds) = rendered?;
+                totals.rounds.extend(rounds);
                 if self.denoise {
                     let started = Instant::now();
-                    let (scene, pixels) = (built.scene(), &mut rendered.pixels);
-                    let radiance = rendered.radiance.take();
-                    let denoised = denoise_flag::apply(
-                        scene,
-                        camera,
-                        self.options,
-                        region,
-                        threaded,
-                        (pixels, radiance),
-                    );
-                    if let Err(e) = denoised {
-                        progress.finish();
-                        return Err(e);
-                    }
+                    let frame = (&mut rendered.pixels[..], rendered.radiance.take());
+                    let (scene, options) = (built.scene(), self.options);
+                    denoise_flag::apply(scene, camera, options, region, threaded, frame)?;
                     totals.denoise += started.elapsed();
                 }
                 let started = Instant::now();
-                if let Err(e) = self.write(first.take(), path, rendered.pixels) {
-                    progress.finish();
-                    return Err(e);
-                }
+                self.write(first.take(), path, rendered.pixels)?;
                 totals.rays += rendered.rays;
                 totals.pixels += u64::from(region.width) * u64::from(region.height);
                 totals.render += rendered.elapsed;
                 totals.encode += started.elapsed();
-            }
+                Ok::<_, String>(())
+            });
             progress.finish();
-            Ok(totals)
+            rendered.map(|()| totals)
         })
     }
 
@@ -338,7 +317,7 @@ impl Job<'_> {
         } = *totals;
         // One camera ray per sample: what adaptive sampling spent.
         let samples_per_pixel = rays.primary_rays as f64 / pixels.max(1) as f64;
-        let bounds = self.subject.bounds();
+        let bounds = self.subject.shown.bounds();
         let ms = |d: Duration| d.as_secs_f64() * 1e3;
         let mrays = rays.primary_rays as f64 / render.as_secs_f64().max(1e-9) / 1e6;
         let v = |v: voxtrace::glam::IVec3| format!("{},{},{}", v.x, v.y, v.z);

@@ -21,19 +21,16 @@ pub mod guides;
 pub mod image_error;
 pub mod part;
 mod pipeline;
-mod render_job;
 pub mod room;
-mod settings_diff;
+pub mod settings_diff;
 pub mod stitch;
 pub mod tiles;
 mod units;
 
 pub use export::{export_vox, terrain_box};
 pub use frames::{frame_path, parse_frame_range, turntable, FrameRange};
-// The framing is the shared crate's (the web page frames the same way);
-// the CLI's tests check it through the CLI.
-pub use pipeline::{on_threads, Backend, BuiltScene, ROUND_STATE_BYTES};
-pub use render_job::mean_radiance;
-pub use render_job::Rendered;
+pub use pipeline::{mean_radiance, on_threads, Backend, BuiltScene, Rendered, ROUND_STATE_BYTES};
 pub use units::human_bytes;
+/// The framing is the shared crate's (the web page frames the same way);
+/// the CLI's tests check it through the CLI.
 pub use voxtrace_flags::framing;

@@ -15,7 +15,6 @@ mod output;
 mod progress;
 mod subject;
 mod view;
-mod vox_camera;
 
 use std::ffi::OsString;
 use std::io::Write;
@@ -32,7 +31,7 @@ use voxtrace_flags::Effects;
 
 use args::{Args, Command, GivenFlags, TileArgs};
 use budget::Budget;
-use effects::{ignored_effects, ignored_flags, materials_of, unused_in_path};
+use effects::{ignored_effects, ignored_flags, unused_in_path};
 use farm::TileJob;
 use job::{Frame, Job};
 use output::Format;
@@ -109,7 +108,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     let explicit = Args::camera_given(matches);
     let flags = view::measured_default(args.camera_flags(), explicit, &subject, args.max_memory);
     let file = args.camera;
-    let settings = camera_settings(file, &flags, &subject.stage(), subject.cameras())?;
+    let settings = camera_settings(file, &flags, &subject.shown.stage(), subject.cameras())?;
     let range = frame_range(args.frames, args.frame_range, &args.farm)?;
     let cameras = turntable_cameras(settings, range, args.frames.unwrap_or(1))?;
     if let Some(frames) = args.frames {
@@ -118,8 +117,8 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     }
     let first = &cameras[0].camera;
     let (options, plan) = resolve_effects(&args.effects(), &subject, &settings);
-    let scene = subject.tile_scene();
-    let tile = farm::select(&args.farm, first, &options, scene, args.backend, &args.out)?;
+    let scene = || subject.tile_text();
+    let tile = farm::select(&args.farm, first, &options, &scene, args.backend, &args.out)?;
     let region = region(tile.as_ref(), args.region, first)?;
     let out = tile.as_ref().map_or(&args.out, |tile| &tile.out);
     let format = output::format_of(out, args.format)?;
@@ -249,10 +248,10 @@ fn resolve_effects(
     subject: &Subject<'_>,
     view: &CameraSettings,
 ) -> (RenderOptions, EffectPlan) {
-    let model = subject.model();
+    let model = subject.shown.model();
     let distance = (view.lookfrom - view.lookat).length();
-    let options = voxtrace_flags::render_options(effects, subject.bounds(), model, distance);
-    let plan = EffectPlan::new(&options, model.map(materials_of));
+    let options = voxtrace_flags::render_options(effects, subject.shown.bounds(), model, distance);
+    let plan = EffectPlan::new(&options, subject.shown.materials());
     (options, plan)
 }
 
@@ -314,10 +313,10 @@ fn camera_inside_note(
     subject: &Subject,
     file_camera: Option<u32>,
 ) -> Option<String> {
-    let bounds = subject.bounds();
+    let bounds = subject.shown.bounds();
     let inside = cameras.iter().any(|frame| {
         let cell = frame.settings.lookfrom.floor().as_ivec3();
-        bounds.contains(cell) && subject.material(cell) != 0
+        bounds.contains(cell) && subject.shown.material(cell) != 0
     });
     let remedy = match file_camera {
         Some(n) => format!(
@@ -386,9 +385,7 @@ fn output_paths(
 /// a success: an error stays the one line on stderr. Escaped: a path a
 /// warning quotes cannot start a line of its own.
 fn report(subject: &Subject<'_>, notes: &[String]) {
-    if let Subject::Terrain {
-        seed, random: true, ..
-    } = subject
+    if let (voxtrace_flags::Subject::Terrain { seed, .. }, true) = (&subject.shown, subject.random)
     {
         say!("seed: {seed}");
     }

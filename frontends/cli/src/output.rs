@@ -59,12 +59,7 @@ pub fn create(path: &Path) -> Result<AtomicFile, String> {
 /// # Errors
 /// One line: why `path` cannot be written.
 pub fn check(path: &Path) -> Result<(), String> {
-    AtomicFile::check(path).map_err(|e| {
-        format!(
-            "cannot write --out {}: {e}",
-            voxtrace_cli::errors::show_path(path)
-        )
-    })
+    AtomicFile::check(path).map_err(|e| format!("cannot write --out {}: {e}", show_path(path)))
 }
 
 /// Checks, before any work, that standard output can take the image: it

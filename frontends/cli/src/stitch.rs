@@ -41,19 +41,14 @@ pub const FRAME_BYTES_PER_PIXEL: u128 = 8;
 /// Reads the part files at `paths` and assembles their frame; `available`
 /// is the memory the stitch may still use, and where that figure comes
 /// from (for the message).
-///
-/// Each part is checked whole as it is read (see [`read_part`]: its
-/// structure and chunk CRCs, its chunks, its zlib stream to the end and
-/// its Adler-32, its digest), before the next is opened; then the parts
-/// are checked against each other.
+/// Each part is checked whole as it is read ([`read_part`]) before the
+/// next is opened; then the parts are checked against each other.
 ///
 /// # Errors
-/// One line naming the problem and the part file: a file that cannot be
-/// read, is not a voxtrace tile, is damaged or altered (anything
-/// [`read_part`] refuses, a part without a digest included), parts of
-/// different settings, frames or grids, a tile given twice, unless
-/// `allow_partial` missing tiles, or a frame that needs more than
-/// `available` bytes.
+/// One line naming the problem and the part file: what [`read_part`]
+/// refuses, parts of different settings, frames or grids, a tile given
+/// twice, unless `allow_partial` missing tiles, or a frame that needs more
+/// than `available` bytes.
 pub fn stitch(
     paths: &[PathBuf],
     allow_partial: bool,

@@ -1,41 +1,30 @@
-//! What a render shows: the seeded terrain or a loaded `.vox` scene, and
-//! what each stage of the run asks of it (its box, the stage its camera
-//! frames, the cameras a file carries, what a tile's hash names, the
-//! memory it already holds, the storage built from it).
+//! What a render shows: the shared crate's [`voxtrace_flags::Subject`]
+//! (the seeded terrain or a loaded `.vox` scene, framed and built as every
+//! frontend does), with what only the CLI asks of it (the file it came
+//! from, for messages, `--camera` and a tile's settings; whether its seed was
+//! drawn at random; the memory it already holds).
 
 use std::path::Path;
 use std::time::Duration;
 
-use voxtrace::glam::{IVec3, Vec3};
-use voxtrace::{CameraSettings, IAabb, SceneMaterials, VoxModel, VoxelGenerator, VoxelSource};
+use voxtrace::{SceneMaterials, VoxModel};
 use voxtrace_cli::errors::show_path;
+use voxtrace_cli::part::fnv1a64;
 use voxtrace_cli::{Backend, BuiltScene};
-use voxtrace_flags::{Boxes, Stage};
 
-use crate::effects::materials_of;
-use crate::farm::TileScene;
-use crate::vox_camera::FileCameras;
+/// The cameras `--camera` may pick from: the `.vox` file's path and the
+/// scene loaded from it; `None` for the terrain.
+pub type FileCameras<'a> = Option<(&'a Path, &'a VoxModel)>;
 
 /// What the CLI renders.
-pub enum Subject<'a> {
-    /// The seeded terrain over `[-size, size)^3`; a `random` seed is
-    /// printed once the run has succeeded.
-    Terrain {
-        /// The terrain's seed.
-        seed: u64,
-        /// Whether the seed was drawn at random (no `--seed`).
-        random: bool,
-        /// The extent N (`--size`).
-        size: i32,
-    },
-    /// A `.vox` scene and the file it was loaded from (boxed: its palette
-    /// alone is 768 bytes).
-    Model {
-        /// The `--vox` file, as messages name it.
-        path: &'a Path,
-        /// The scene.
-        model: Box<VoxModel>,
-    },
+pub struct Subject<'a> {
+    /// The terrain or the model.
+    pub shown: voxtrace_flags::Subject,
+    /// The `--vox` file, as messages name it; `None` for the terrain.
+    pub path: Option<&'a Path>,
+    /// Whether the terrain's seed was drawn at random (no `--seed`): it
+    /// is printed once the run has succeeded.
+    pub random: bool,
 }
 
 /// A seed from the clock and process id: different per run, printed so the
@@ -64,104 +53,73 @@ impl<'a> Subject<'a> {
     /// # Errors
     /// One line naming the file, when it cannot be loaded.
     pub fn load(vox: Option<&'a Path>, seed: Option<u64>, size: i32) -> Result<Self, String> {
-        Ok(match vox {
-            Some(path) => Subject::Model {
-                path,
-                model: Box::new(
-                    VoxModel::load(path)
-                        .map_err(|e| format!("cannot load --vox {}: {e}", show_path(path)))?,
-                ),
-            },
-            None => {
-                let (seed, random) = terrain_seed(seed);
-                Subject::Terrain { seed, random, size }
-            }
+        let Some(path) = vox else {
+            let (seed, random) = terrain_seed(seed);
+            let shown = voxtrace_flags::Subject::Terrain { seed, size };
+            return Ok(Subject {
+                shown,
+                path: None,
+                random,
+            });
+        };
+        let model = voxtrace::VoxModel::load(path)
+            .map_err(|e| format!("cannot load --vox {}: {e}", show_path(path)))?;
+        Ok(Subject {
+            shown: voxtrace_flags::Subject::Model(Box::new(model)),
+            path: Some(path),
+            random: false,
         })
-    }
-
-    /// The loaded scene, `None` for the terrain.
-    pub fn model(&self) -> Option<&VoxModel> {
-        match self {
-            Subject::Model { model, .. } => Some(model),
-            Subject::Terrain { .. } => None,
-        }
-    }
-
-    /// The box the storage is built over.
-    pub fn bounds(&self) -> IAabb {
-        match self {
-            Subject::Terrain { size, .. } => IAabb::centered(*size),
-            Subject::Model { model, .. } => model.bounds(),
-        }
-    }
-
-    /// What the camera flags frame: the terrain's box from the paper's
-    /// position, or the model's voxels around its center.
-    pub fn stage(&self) -> Stage<'_> {
-        match self {
-            Subject::Terrain { size, .. } => Stage {
-                boxes: Boxes::Bounds(IAabb::centered(*size)),
-                target: Vec3::ZERO,
-                default_position: Some(CameraSettings::paper(*size).lookfrom),
-            },
-            Subject::Model { model, .. } => Stage {
-                boxes: Boxes::Model(model),
-                target: (model.bounds().min + model.bounds().max).as_vec3() * 0.5,
-                default_position: None,
-            },
-        }
     }
 
     /// The cameras `--camera` may pick from (none for the terrain).
     pub fn cameras(&self) -> FileCameras<'_> {
-        match self {
-            Subject::Model { path, model } => Some((path, model)),
-            Subject::Terrain { .. } => None,
-        }
+        self.path.zip(self.shown.model())
     }
 
-    /// What a tile's settings hash names of this scene.
-    pub fn tile_scene(&self) -> TileScene<'_> {
-        match self {
-            Subject::Model { path, .. } => TileScene::Vox(path),
-            Subject::Terrain { seed, size, .. } => TileScene::Terrain {
-                seed: *seed,
-                size: *size,
-            },
+    /// What a tile's settings text names of this scene: the terrain's
+    /// seed and size, or the hash of the `--vox` file's contents (read
+    /// again now, when a tile is rendered).
+    ///
+    /// # Errors
+    /// One line naming the file, when it cannot be read.
+    pub fn tile_text(&self) -> Result<String, String> {
+        match (&self.shown, self.path) {
+            (voxtrace_flags::Subject::Terrain { seed, size }, _) => {
+                Ok(format!("terrain seed={seed} size={size}"))
+            }
+            (_, path) => {
+                let path = path.unwrap_or(Path::new(""));
+                let bytes = std::fs::read(path)
+                    .map_err(|e| format!("cannot load --vox {}: {e}", show_path(path)))?;
+                Ok(format!("vox fnv1a64={:016x}", fnv1a64(&bytes)))
+            }
         }
     }
 
     /// The loaded model's solid voxels and heap bytes, for the memory
     /// budget (`None` for the terrain, which is generated as it is built).
     pub fn loaded(&self) -> Option<(u64, u128)> {
-        self.model()
-            .map(|model| (model.voxel_count() as u64, model.heap_bytes() as u128))
+        let model = self.shown.model()?;
+        Some((model.voxel_count() as u64, model.heap_bytes() as u128))
     }
 
     /// The file's MATL values that could not be used as they are, each
     /// prefixed with the file's path.
     pub fn warnings(&self) -> Vec<String> {
-        match self {
-            Subject::Model { path, model } => model
-                .warnings()
-                .iter()
-                .map(|w| format!("{}: {w}", show_path(path)))
-                .collect(),
-            Subject::Terrain { .. } => Vec::new(),
-        }
+        let (Some(path), Some(model)) = (self.path, self.shown.model()) else {
+            return Vec::new();
+        };
+        let path = show_path(path);
+        model
+            .warnings()
+            .iter()
+            .map(|w| format!("{path}: {w}"))
+            .collect()
     }
 
-    /// The material at `pos`, to tell a camera inside a voxel.
-    pub fn material(&self, pos: IVec3) -> u8 {
-        match self {
-            Subject::Terrain { seed, .. } => VoxelGenerator::new(*seed).material(pos),
-            Subject::Model { model, .. } => model.material(pos),
-        }
-    }
-
-    /// Builds `backend` over [`Subject::bounds`] (in parallel when
-    /// `threaded`): the storage, the build's wall time, and the materials to shade it with
-    /// (`None`: all diffuse, the terrain).
+    /// Builds `backend` (in parallel when `threaded`): the storage, the
+    /// build's wall time, and the materials to shade it with (`None`: all
+    /// diffuse, the terrain).
     ///
     /// # Errors
     /// [`BuiltScene::build_from`]'s one line.
@@ -170,18 +128,14 @@ impl<'a> Subject<'a> {
         backend: Backend,
         threaded: bool,
     ) -> Result<(BuiltScene, Duration, Option<SceneMaterials<'_>>), String> {
-        let bounds = self.bounds();
-        match self {
-            Subject::Terrain { seed, .. } => {
-                let terrain = VoxelGenerator::new(*seed);
-                let (built, build) = BuiltScene::build_from(backend, &terrain, bounds, threaded)?;
-                Ok((built, build, None))
+        let (built, took) = match &self.shown {
+            voxtrace_flags::Subject::Terrain { seed, size } => {
+                BuiltScene::build(backend, *size, *seed, threaded)?
             }
-            Subject::Model { model, .. } => {
-                let (built, build) =
-                    BuiltScene::build_from(backend, model.as_ref(), bounds, threaded)?;
-                Ok((built, build, Some(materials_of(model))))
+            voxtrace_flags::Subject::Model(model) => {
+                BuiltScene::build_from(backend, model.as_ref(), model.bounds(), threaded)?
             }
-        }
+        };
+        Ok((built, took, self.shown.materials()))
     }
 }

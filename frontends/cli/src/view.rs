@@ -1,16 +1,17 @@
 //! The one camera the camera flags describe: a `.vox` file's own
-//! (`--camera N`), or the flags resolved by the crate the web page shares
+//! (`--camera N`, its rCAM chunk, with the one-line errors when there is
+//! none to use), or the flags resolved by the crate the web page shares
 //! (`voxtrace_flags`), the default view measured when no camera flag is
 //! given.
 
 use voxtrace::glam::Vec3;
-use voxtrace::CameraSettings;
+use voxtrace::{CameraSettings, Projection, VoxCamera, VoxCameraMode};
+use voxtrace_cli::errors::show_path;
 use voxtrace_cli::Backend;
 use voxtrace_flags::{open_side, resolve, Aim, CameraFlags, Stage, MODEL_FOV};
 
 use crate::memory;
-use crate::subject::Subject;
-use crate::vox_camera::{file_camera, FileCameras};
+use crate::subject::{FileCameras, Subject};
 
 /// The one camera on `stage`: `--camera N` (`file`) picks one of the
 /// file's `cameras` at the flags' image size, otherwise the `flags`
@@ -51,18 +52,16 @@ pub fn measured_default(
     if explicit || flags.aim != Aim::Default {
         return flags;
     }
-    let stage = subject.stage();
-    let fov = match (subject, stage.default_position) {
-        (Subject::Model { .. }, _) => MODEL_FOV,
-        (Subject::Terrain { .. }, Some(position)) if !blocked(subject, position, stage.target) => {
-            return flags;
-        }
-        (Subject::Terrain { .. }, _) => flags.fov,
+    let stage = subject.shown.stage();
+    let fov = match (subject.shown.model(), stage.default_position) {
+        (Some(_), _) => MODEL_FOV,
+        (None, Some(position)) if !blocked(subject, position, stage.target) => return flags,
+        (None, _) => flags.fov,
     };
     let lens = CameraFlags { fov, ..flags };
     let budget = memory::budget(
         Backend::Octree,
-        subject.bounds(),
+        subject.shown.bounds(),
         subject.loaded(),
         (0, 0),
         max_memory,
@@ -84,5 +83,86 @@ pub fn measured_default(
 /// `subject`: it starts inside a solid voxel, or on its target.
 fn blocked(subject: &Subject<'_>, position: Vec3, target: Vec3) -> bool {
     let cell = position.floor().as_ivec3();
-    position == target || (subject.bounds().contains(cell) && subject.material(cell) != 0)
+    position == target
+        || (subject.shown.bounds().contains(cell) && subject.shown.material(cell) != 0)
+}
+
+/// What the file's camera `n` names, for an image of `width` x `height`
+/// pixels, or why it cannot be used.
+///
+/// # Errors
+/// One line, for the terrain (which has no cameras), a camera id the file
+/// does not have (naming how many it has), a panorama, or an orthographic
+/// camera without a height.
+pub fn file_camera(
+    n: u32,
+    (width, height): (u32, u32),
+    cameras: FileCameras<'_>,
+) -> Result<CameraSettings, String> {
+    let Some((path, model)) = cameras else {
+        return Err(format!(
+            "--camera {n} picks a camera of a .vox file: give --vox FILE (the terrain has none)"
+        ));
+    };
+    let file = show_path(path);
+    let cameras = model.cameras();
+    let Some(camera) = cameras.iter().find(|c| c.id == n) else {
+        let malformed = match model.malformed_cameras() {
+            (0, _) | (_, None) => String::new(),
+            (1, Some(first)) => format!("; {first}"),
+            (count, Some(first)) => {
+                format!("; {count} rCAM chunks are malformed, the first: {first}")
+            }
+        };
+        return Err(format!(
+            "--camera {n}: {file} {}{malformed}",
+            how_many(cameras)
+        ));
+    };
+    let projection = match camera.mode {
+        VoxCameraMode::Panorama => {
+            return Err(format!(
+                "--camera {n}: camera {n} of {file} is a panorama (_mode pano), which voxtrace does not render"
+            ))
+        }
+        mode if mode.is_orthographic() => {
+            let height = camera.ortho_height();
+            if !(height > 0.0 && height.is_finite()) {
+                return Err(format!(
+                    "--camera {n}: camera {n} of {file} is orthographic with _radius {} and _frustum {}: its image has no height",
+                    camera.radius, camera.frustum
+                ));
+            }
+            Projection::Orthographic { height }
+        }
+        _ => Projection::Perspective,
+    };
+    let (_, up) = camera.orientation();
+    Ok(CameraSettings {
+        width,
+        height,
+        vertical_fov: camera.fov,
+        lookfrom: camera.position(),
+        lookat: camera.lookat(),
+        cam_up: up,
+        projection,
+        ..CameraSettings::default()
+    })
+}
+
+/// "has 10 cameras, 0 to 9", "has no cameras", or the ids when they are
+/// not a run from 0.
+fn how_many(cameras: &[VoxCamera]) -> String {
+    let count = cameras.len();
+    let run = cameras.iter().enumerate().all(|(i, c)| c.id as usize == i);
+    match count {
+        0 => "has no cameras".to_string(),
+        1 if run => "has 1 camera, 0".to_string(),
+        _ if run => format!("has {count} cameras, 0 to {}", count - 1),
+        _ => {
+            let ids: Vec<String> = cameras.iter().map(|c| c.id.to_string()).collect();
+            let s = if count == 1 { "" } else { "s" };
+            format!("has {count} camera{s}: {}", ids.join(", "))
+        }
+    }
 }

@@ -313,3 +313,77 @@ fn names_up_to_the_file_systems_limit_are_written() {
     }
     assert_eq!(entries(&dir).len(), 2, "{:?}", entries(&dir));
 }
+
+/// The library's `AtomicFile`, without the binary: a failure, a drop or a
+/// rename that fails leaves the old file and no temporary; temporary names
+/// are short, random and hidden; a bad directory fails at creation.
+mod atomic_file {
+    use std::io::Write;
+    use std::path::Path;
+
+    use super::{entries, fresh_dir};
+    use voxtrace_cli::atomic::{write_atomic, AtomicFile, PREFIX_BYTES};
+
+    #[test]
+    fn a_failure_or_a_drop_leaves_the_old_file_and_no_temporary() {
+        let dir = fresh_dir("lib-fail");
+        let target = dir.join("out.png");
+        std::fs::write(&target, b"old").unwrap();
+        let failed = write_atomic(&target, |out| {
+            out.write_all(b"half").map_err(|e| e.to_string())?;
+            Err("the encoder failed".into())
+        });
+        assert_eq!(failed, Err("the encoder failed".into()));
+        drop(AtomicFile::create(&target).unwrap());
+        assert_eq!(std::fs::read(&target).unwrap(), b"old");
+        assert_eq!(entries(&dir), ["out.png"]);
+    }
+    #[test]
+    fn a_rename_that_fails_removes_the_temporary() {
+        let dir = fresh_dir("lib-rename");
+        let target = dir.join("taken");
+        let mut file = AtomicFile::create(&target).unwrap();
+        file.write_all(b"x").unwrap();
+        // A directory takes the target's place meanwhile: the rename cannot
+        // replace it.
+        std::fs::create_dir(&target).unwrap();
+        std::fs::write(target.join("inside"), b"kept").unwrap();
+        assert!(file.commit().is_err());
+        assert_eq!(entries(&dir), ["taken"]);
+        assert_eq!(std::fs::read(target.join("inside")).unwrap(), b"kept");
+    }
+    #[test]
+    fn temporary_names_are_short_random_and_hidden() {
+        let dir = fresh_dir("lib-names");
+        // NAME_MAX (255 bytes) and one short of it: the temporary name must
+        // not grow with the target's.
+        for len in [254, 255] {
+            let name = format!("{}.png", "a".repeat(len - 4));
+            let target = dir.join(&name);
+            let file = AtomicFile::create(&target).unwrap();
+            let temp = file.temp_path().unwrap();
+            let temp = temp.file_name().unwrap().to_str().unwrap().to_string();
+            assert!(temp.len() <= 1 + PREFIX_BYTES + 1 + 8 + 4, "{temp}");
+            let prefix = format!(".{}.", &name[..PREFIX_BYTES]);
+            assert!(
+                temp.starts_with(&prefix) && temp.ends_with(".tmp"),
+                "{temp}"
+            );
+            let random = &temp[prefix.len()..temp.len() - 4];
+            assert_eq!(random.len(), 8, "{temp}");
+            assert!(random.chars().all(|c| c.is_ascii_alphanumeric()), "{temp}");
+            file.commit().unwrap();
+        }
+        // A multi-byte name is cut at a character boundary.
+        let target = dir.join("éééééééééééééééééé.png");
+        let file = AtomicFile::create(&target).unwrap();
+        let temp = file.temp_path().unwrap();
+        let temp = temp.file_name().unwrap().to_str().unwrap();
+        assert!(temp.starts_with(".éééééééééééé."), "{temp}");
+    }
+    #[test]
+    fn an_unwritable_directory_fails_at_create() {
+        assert!(AtomicFile::create(Path::new("/nonexistent-dir/x.png")).is_err());
+        assert!(AtomicFile::create(Path::new("/")).is_err());
+    }
+}

@@ -689,3 +689,127 @@ fn bad_matl_values_warn_in_one_line_naming_file_material_and_key() {
         assert!(warning[0].contains(needle), "{needle} in {stderr}");
     }
 }
+
+/// Errors on one line, shown exactly (the library's `errors`).
+mod one_line_errors {
+    use clap::CommandFactory;
+    use std::ffi::OsString;
+    use voxtrace_cli::errors::{escape_controls, one_line, parse, show_path};
+
+    /// A number and a path, as the binary's flags take them.
+    #[derive(Debug, clap::Parser)]
+    struct Flags {
+        #[arg(long)]
+        n: Option<i32>,
+        #[arg(long)]
+        path: Option<std::path::PathBuf>,
+    }
+
+    /// The one line `args` end with, or the parsed flags.
+    fn line(args: &[OsString]) -> Result<Flags, String> {
+        let mut argv = vec![OsString::from("t")];
+        argv.extend_from_slice(args);
+        parse::<Flags>(&Flags::command(), &argv)
+            .map(|(flags, _)| flags)
+            .map_err(|e| one_line(e, &argv))
+    }
+
+    #[test]
+    fn a_refused_value_is_shown_exactly_on_one_line() {
+        for args in [["--n=1\x1b\n2"].as_slice(), &["--n", "1\x1b\n2"]] {
+            let args: Vec<OsString> = args.iter().map(OsString::from).collect();
+            let line = line(&args).unwrap_err();
+            assert!(line.starts_with("error: "), "{line}");
+            assert!(!line.contains(char::is_control), "{line:?}");
+            assert!(line.contains("'1\\u{1b}\\n2'"), "{line}");
+        }
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn bytes_that_are_not_utf8_pass_in_a_path_and_are_named_elsewhere() {
+        use std::os::unix::ffi::{OsStrExt, OsStringExt};
+        let bytes = |b: &[u8]| OsString::from_vec(b.to_vec());
+        let flags = line(&[bytes(b"--path=a\xff")]).unwrap();
+        assert_eq!(flags.path.unwrap().as_os_str().as_bytes(), b"a\xff");
+        for args in [
+            vec![bytes(b"--n=1\xff")],
+            vec!["--n".into(), bytes(b"1\xff")],
+        ] {
+            let line = line(&args).unwrap_err();
+            assert!(line.contains("invalid value '1\\xff' for '--n'"), "{line}");
+        }
+    }
+
+    #[test]
+    fn control_characters_are_escaped_and_the_rest_kept() {
+        assert_eq!(
+            escape_controls("a\nb\tc\r\u{1b}[31m\u{7f}\u{85}é ü/x.png"),
+            "a\\nb\\tc\\r\\u{1b}[31m\\u{7f}\\u{85}é ü/x.png"
+        );
+        assert_eq!(escape_controls("plain"), "plain");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn paths_show_bytes_that_are_not_utf8_as_hex() {
+        use std::os::unix::ffi::OsStrExt;
+        let path = std::path::Path::new(std::ffi::OsStr::from_bytes(b"a\xff\xef\xbf\xbd\n.png"));
+        assert_eq!(show_path(path), "a\\xff\u{fffd}\\n.png");
+    }
+}
+
+/// The library's figures: byte counts, image error, the rounds' state.
+mod library_figures {
+    use voxtrace::glam::U8Vec3;
+    use voxtrace::pack;
+    use voxtrace_cli::human_bytes;
+    use voxtrace_cli::image_error::{psnr, rmse};
+
+    #[test]
+    fn byte_counts_read_short_and_keep_the_exact_figure() {
+        assert_eq!(human_bytes(549_755_813_888), "512 GiB (549755813888 bytes)");
+        assert_eq!(human_bytes(1536), "1.5 KiB (1536 bytes)");
+        assert_eq!(human_bytes(1000), "1000 bytes");
+        assert_eq!(human_bytes(8_000_000), "7.6 MiB (8000000 bytes)");
+        assert!(human_bytes(u128::MAX).ends_with(&format!("({} bytes)", u128::MAX)));
+    }
+
+    #[test]
+    fn a_frame_equal_to_its_reference_has_no_error() {
+        let frame: Vec<u32> = (0..64u8)
+            .map(|i| pack(U8Vec3::new(i, 255 - i, i / 2)))
+            .collect();
+        assert_eq!(rmse(&frame, &frame), 0.0);
+        assert_eq!(psnr(0.0), f64::INFINITY);
+    }
+
+    #[test]
+    fn the_error_is_the_root_mean_square_of_the_channel_differences() {
+        // Every channel of every pixel off by `d`: the error is `d`, whatever
+        // the colors; alpha is not a color channel.
+        for d in [1u8, 3, 10, 100] {
+            let reference: Vec<u32> = (0..50u8)
+                .map(|i| pack(U8Vec3::new(i, i + 1, i + 2)))
+                .collect();
+            let frame: Vec<u32> = (0..50u8)
+                .map(|i| pack(U8Vec3::new(i + d, i + 1 + d, i + 2 + d)) & 0x00ff_ffff)
+                .collect();
+            assert!((rmse(&frame, &reference) - f64::from(d)).abs() < 1e-9);
+        }
+        // One channel of one pixel in four off by 12: sqrt(144 / 12) per
+        // channel mean.
+        let reference = vec![pack(U8Vec3::splat(100)); 4];
+        let mut frame = reference.clone();
+        frame[2] = pack(U8Vec3::new(112, 100, 100));
+        let e = rmse(&frame, &reference);
+        assert!((e - 12f64.sqrt()).abs() < 1e-12, "{e}");
+        assert!((psnr(e) - 20.0 * (255.0 / e).log10()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_pixel_keeps_64_bytes_between_rounds() {
+        // docs/cli.md says so; the memory check counts them.
+        assert_eq!(voxtrace_cli::ROUND_STATE_BYTES, 64);
+    }
+}

@@ -443,3 +443,114 @@ fn a_part_path_with_a_newline_is_one_error_line() {
     let out = stitch_in(&dir, &["t-1.png", "new\nline.png", "--out", "f.png"]);
     assert_refused(&out, &["duplicate tile 1", "new\\nline.png"]);
 }
+
+/// The setting a stitch names when two parts' settings differ
+/// (`settings_diff`), from settings texts made here: the flag and both
+/// values, the first listed setting of several, one short line for any
+/// text.
+mod settings_difference {
+
+    use voxtrace_cli::part::settings_text;
+    use voxtrace_cli::settings_diff::settings_difference;
+
+    #[derive(Debug)]
+    #[allow(dead_code)] // read through Debug
+    struct Options {
+        flat: bool,
+        shadows: bool,
+        occlusion: Option<Occlusion>,
+    }
+
+    #[derive(Debug)]
+    #[allow(dead_code)] // read through Debug
+    struct Occlusion {
+        rays: u16,
+        distance: f32,
+    }
+
+    fn text(subject: &str, backend: &str, shadows: bool, ao: Option<(u16, f32)>) -> String {
+        let options = Options {
+            flat: false,
+            shadows,
+            occlusion: ao.map(|(rays, distance)| Occlusion { rays, distance }),
+        };
+        settings_text(subject, backend, &(1.5f32, "camera"), &options)
+    }
+
+    #[test]
+    fn a_difference_names_the_flag_and_both_values() {
+        let base = text("terrain seed=3 size=30", "octree", true, None);
+        let diff = |other: &str| settings_difference(&base, other);
+        assert_eq!(diff(&base), None);
+        assert_eq!(
+            diff(&text("terrain seed=3 size=30", "octree", false, None)).unwrap(),
+            "--shadows: true against false"
+        );
+        assert_eq!(
+            diff(&text("terrain seed=9 size=30", "octree", true, None)).unwrap(),
+            "--seed: 3 against 9"
+        );
+        assert_eq!(
+            diff(&text("terrain seed=3 size=30", "dense", true, None)).unwrap(),
+            "--backend: octree against dense"
+        );
+        assert_eq!(
+            diff(&text(
+                "terrain seed=3 size=30",
+                "octree",
+                true,
+                Some((4, 8.0))
+            ))
+            .unwrap(),
+            "--ao: None against Some(Occlusion { rays: 4, distance: 8.0 })"
+        );
+        let a = text("terrain seed=3 size=30", "octree", true, Some((4, 8.0)));
+        let b = text("terrain seed=3 size=30", "octree", true, Some((4, 2.5)));
+        assert_eq!(
+            settings_difference(&a, &b).unwrap(),
+            "--ao-distance: 8.0 against 2.5"
+        );
+        let vox = text("vox fnv1a64=00000000000000ff", "octree", true, None);
+        assert!(
+            diff(&vox).unwrap().starts_with("the scene"),
+            "{:?}",
+            diff(&vox)
+        );
+    }
+
+    #[derive(Debug)]
+    #[allow(dead_code)] // read through Debug
+    struct Camera {
+        pixel00: (f32, f32),
+        center: (f32, f32),
+    }
+
+    #[test]
+    fn of_several_differences_the_one_listed_first_is_named() {
+        // The position is named before what it derives, though later in
+        // the text.
+        let camera = |x: f32| Camera {
+            pixel00: (x - 1.0, 0.5),
+            center: (x, 0.0),
+        };
+        let text = |x| settings_text("terrain seed=1 size=9", "octree", &camera(x), &());
+        let diff = settings_difference(&text(1.0), &text(2.0)).unwrap();
+        assert!(
+            diff.starts_with("the camera position (--position")
+                && diff.ends_with(": (1.0, 0.0) against (2.0, 0.0)"),
+            "{diff}"
+        );
+    }
+
+    #[test]
+    fn texts_that_are_not_settings_still_give_one_short_line() {
+        let long = "x".repeat(10_000);
+        let diff = settings_difference("a=1 b=[2", &long).unwrap();
+        assert!(diff.len() < 200 && diff.ends_with("..."), "{diff}");
+        assert_eq!(settings_difference("é=1", "é=2").unwrap(), "é: 1 against 2");
+        // Nesting deeper than any settings text stops early, not on the stack.
+        let nested = |leaf: &str| "A { a: ".repeat(100_000) + leaf + &" }".repeat(100_000);
+        let deep = settings_difference(&nested("1"), &nested("2")).unwrap();
+        assert!(deep.lines().count() == 1 && deep.len() < 200, "{deep}");
+    }
+}

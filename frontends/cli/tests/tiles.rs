@@ -306,3 +306,369 @@ fn placements_are_checked_against_their_grid() {
         assert!(err.contains(expected), "{text}: {err}");
     }
 }
+
+/// The grid, task indexes and tile names, one function at a time.
+mod tile_tasks {
+    use std::env::VarError;
+    use voxtrace::Rect;
+    use voxtrace_cli::tiles::{frames_for_task, tile_name, Grid, TaskIndex};
+
+    use std::ffi::OsString;
+
+    #[test]
+    fn grids_parse_and_refuse_nonsense() {
+        assert_eq!(Grid::parse("4x3"), Ok(Grid::new(4, 3).unwrap()));
+        assert_eq!(Grid::parse("16X1").map(Grid::count), Ok(16));
+        assert_eq!(Grid::parse("256x256").map(Grid::count), Ok(Grid::MAX_TILES));
+        for bad in [
+            "4",
+            "0x4",
+            "4x0",
+            "x",
+            "4x4x4",
+            "-1x2",
+            "257x256",
+            "65536x65536",
+            "",
+        ] {
+            let err = Grid::parse(bad).unwrap_err();
+            assert!(err.contains(&format!("'{bad}'")), "{bad}: {err}");
+        }
+    }
+
+    #[test]
+    fn tiles_are_row_major_and_split_unevenly_by_one_pixel() {
+        let grid = Grid::new(3, 2).unwrap();
+        // 10 = 3 + 3 + 4 columns, 5 = 2 + 3 rows.
+        let rect = |x, y, width, height| Rect {
+            x,
+            y,
+            width,
+            height,
+        };
+        let tiles: Vec<Rect> = (0..6).map(|i| grid.tile(10, 5, i).unwrap()).collect();
+        assert_eq!(
+            tiles,
+            [
+                rect(0, 0, 3, 2),
+                rect(3, 0, 3, 2),
+                rect(6, 0, 4, 2),
+                rect(0, 2, 3, 3),
+                rect(3, 2, 3, 3),
+                rect(6, 2, 4, 3),
+            ]
+        );
+        assert_eq!(grid.tile(10, 5, 6), None);
+        assert!(grid.fits(3, 2).is_ok());
+        assert!(grid.fits(2, 2).unwrap_err().contains("--tiles 3x2"));
+    }
+
+    #[test]
+    fn indexes_come_from_numbers_or_the_environment_and_name_the_range() {
+        let env = |var: &str| match var {
+            "TASK" => Ok("5".to_string()),
+            "JUNK" => Ok("five".to_string()),
+            // Only the variant is read, not the value: built portably.
+            "BYTES" => Err(VarError::NotUnicode(OsString::from("\u{fffd}"))),
+            _ => Err(VarError::NotPresent),
+        };
+        let resolve = |text: &str| {
+            TaskIndex::parse(text)?.resolve("--tile-index", 16, "the 4x4 grid's tiles", env)
+        };
+        assert_eq!(resolve("3"), Ok(3));
+        assert_eq!(resolve("env:TASK"), Ok(5));
+        let out = resolve("16").unwrap_err();
+        assert!(
+            out.contains("--tile-index 16") && out.contains("0 to 15"),
+            "{out}"
+        );
+        let unset = resolve("env:SLURM_ARRAY_TASK_ID").unwrap_err();
+        assert!(unset.contains("SLURM_ARRAY_TASK_ID is not set") && unset.contains("0 to 15"));
+        let junk = resolve("env:JUNK").unwrap_err();
+        assert!(
+            junk.contains("'five'") && junk.contains("0 to 15"),
+            "{junk}"
+        );
+        // Bytes that are not text are not "unset".
+        let bytes = resolve("env:BYTES").unwrap_err();
+        assert!(
+            bytes.contains("BYTES is not valid UTF-8") && bytes.contains("0 to 15"),
+            "{bytes}"
+        );
+        assert!(resolve("env:").is_err() && resolve("-1").is_err());
+        let big = TaskIndex::Number(20)
+            .resolve("--tile-index", 16, "tiles", |_| Err(VarError::NotPresent));
+        assert!(big.unwrap_err().contains("out of range"));
+    }
+
+    #[test]
+    fn tile_names_pad_to_the_last_tile_number() {
+        assert_eq!(tile_name("part-%t.png", 3, 16), "part-03.png");
+        assert_eq!(tile_name("part-%t.png", 3, 10), "part-3.png");
+        assert_eq!(tile_name("%t/%t.png", 7, 1000), "007/007.png");
+        assert_eq!(tile_name("plain.png", 7, 1000), "plain.png");
+    }
+
+    #[test]
+    fn frame_tasks_take_consecutive_runs() {
+        let runs: Vec<_> = (0..3).map(|i| frames_for_task(i, 3, 10).unwrap()).collect();
+        assert_eq!(runs, [0..3, 3..6, 6..10]);
+        assert_eq!(frames_for_task(4, 10, 10), Ok(4..5));
+        assert!(frames_for_task(3, 3, 10).unwrap_err().contains("0 to 2"));
+        assert!(frames_for_task(0, 11, 10).is_err());
+        assert!(frames_for_task(0, 0, 10).is_err());
+    }
+}
+
+/// A part written and read back: its layout, its digest as documented, and
+/// its bytes in pieces of any size.
+mod part_file {
+    use sha2::{Digest, Sha256};
+    use voxtrace::Rect;
+
+    use voxtrace_cli::part::*;
+    use voxtrace_cli::tiles::Grid;
+
+    /// The chunks of a PNG, signature skipped: each one's type and data.
+    fn chunks(png: &[u8]) -> Vec<([u8; 4], &[u8])> {
+        let mut chunks = Vec::new();
+        let mut at = 8;
+        while at < png.len() {
+            let len = u32::from_be_bytes(png[at..at + 4].try_into().unwrap()) as usize;
+            let kind = png[at + 4..at + 8].try_into().unwrap();
+            chunks.push((kind, &png[at + 8..at + 8 + len]));
+            at += 12 + len;
+        }
+        chunks
+    }
+
+    /// A `width x height` frame as the one tile of a 1x1 grid.
+    fn whole_frame(width: u32, height: u32) -> Placement {
+        Placement {
+            frame_width: width,
+            frame_height: height,
+            grid: Grid::new(1, 1).unwrap(),
+            tile: 0,
+            rect: Rect {
+                x: 0,
+                y: 0,
+                width,
+                height,
+            },
+            frame_number: 0,
+            hash: fnv1a64(b"settings"),
+        }
+    }
+
+    #[test]
+    fn a_part_is_the_cores_streamed_png_with_its_text_chunks_around_the_image() {
+        // Noise, so that the compressed image spans several of the
+        // streaming encoder's IDAT chunks (a whole-image encoder writes one).
+        let (width, height) = (300, 300);
+        let mut state = 0x9e37_79b9_u32;
+        let pixels: Vec<u32> = (0..width * height)
+            .map(|_| {
+                state ^= state << 13;
+                state ^= state >> 17;
+                state ^= state << 5;
+                state
+            })
+            .collect();
+        let placement = whole_frame(width, height);
+        let mut part = Vec::new();
+        write_part(&mut part, &placement, "settings", &pixels).unwrap();
+        let mut plain = Vec::new();
+        voxtrace::encode_png(&mut plain, width, height, &pixels).unwrap();
+        let (part_chunks, plain_chunks) = (chunks(&part), chunks(&plain));
+        let kinds: Vec<&[u8]> = part_chunks.iter().map(|(kind, _)| &kind[..]).collect();
+        let idats = kinds.iter().filter(|&&kind| kind == b"IDAT").count();
+        assert!(idats >= 3, "{idats} IDAT chunks");
+        let keyword = |i: usize| part_chunks[i].1.split(|&b| b == 0).next().unwrap();
+        assert_eq!(kinds[1..3], [b"tEXt", b"tEXt"]);
+        assert_eq!(
+            (keyword(1), keyword(2)),
+            (PART_KEY.as_bytes(), SETTINGS_KEY.as_bytes())
+        );
+        let last = kinds.len() - 2;
+        assert_eq!(
+            (kinds[last], keyword(last)),
+            (&b"tEXt"[..], DIGEST_KEY.as_bytes())
+        );
+        // The rest is the plain encoder's file, chunk for chunk (compared
+        // whole, but not printed: a megabyte of bytes says nothing).
+        let mut image = part_chunks.clone();
+        image.drain(last..=last);
+        image.drain(1..3);
+        assert!(
+            image == plain_chunks,
+            "the part's image chunks are not the core encoder's"
+        );
+        let read = read_part(std::io::Cursor::new(&part)).unwrap();
+        assert_eq!((read.placement, read.pixels), (placement, pixels));
+    }
+
+    /// A 5x3 tile of noise, its placement and its file.
+    fn small_part() -> (Placement, Vec<u32>, Vec<u8>) {
+        let grid = Grid::new(2, 3).unwrap();
+        let rect = grid.tile(10, 9, 3).unwrap();
+        let placement = Placement {
+            frame_width: 10,
+            frame_height: 9,
+            grid,
+            tile: 3,
+            rect,
+            frame_number: 7,
+            hash: fnv1a64(b"settings"),
+        };
+        let pixels: Vec<u32> = (0..rect.width * rect.height)
+            .map(|i| i.wrapping_mul(0x9e37_79b9))
+            .collect();
+        let mut part = Vec::new();
+        write_part(&mut part, &placement, "settings", &pixels).unwrap();
+        (placement, pixels, part)
+    }
+
+    #[test]
+    fn the_digest_is_the_documented_sha256() {
+        let (placement, pixels, part) = small_part();
+        let chunks = chunks(&part);
+        let image_data: Vec<u8> = chunks
+            .iter()
+            .filter(|(kind, _)| kind == b"IDAT")
+            .flat_map(|(_, data)| data.iter().copied())
+            .collect();
+        let digest_chunk = chunks[chunks.len() - 2].1;
+        let text = std::str::from_utf8(&digest_chunk[DIGEST_KEY.len() + 1..]).unwrap();
+        let mut message = b"voxtrace-digest 1\0".to_vec();
+        assert_eq!(message.len(), 18);
+        for n in [10u32, 9, 2, 3, 3, 5, 3, 5, 3, 7] {
+            message.extend_from_slice(&n.to_be_bytes());
+        }
+        assert_eq!(
+            placement.rect,
+            Rect {
+                x: 5,
+                y: 3,
+                width: 5,
+                height: 3
+            }
+        );
+        message.extend_from_slice(&fnv1a64(b"settings").to_be_bytes());
+        message.extend_from_slice(&8u64.to_be_bytes());
+        message.extend_from_slice(b"settings");
+        for pixel in &pixels {
+            message.extend_from_slice(&pixel.to_ne_bytes());
+        }
+        message.extend_from_slice(&Sha256::digest(&image_data));
+        let expected: [u8; 32] = Sha256::digest(&message).into();
+        assert_eq!(PartDigest::parse(text), Ok(PartDigest(expected)));
+        assert_eq!(PartDigest(expected).to_text(), text);
+    }
+
+    #[test]
+    fn a_part_reads_the_same_however_its_bytes_arrive() {
+        let (placement, pixels, part) = small_part();
+        // Buffers of a byte, of odd sizes and of the whole file: the walk
+        // sees every byte the decoder takes, in whatever pieces.
+        for capacity in [1, 2, 3, 7, 13, 64, 8192] {
+            let reader = std::io::BufReader::with_capacity(capacity, &part[..]);
+            let read = read_part(reader).unwrap_or_else(|e| panic!("{capacity}: {e}"));
+            assert_eq!((&read.placement, &read.pixels), (&placement, &pixels));
+        }
+    }
+
+    #[test]
+    fn fnv1a64_matches_the_published_vectors() {
+        // From the FNV reference test suite (Noll): "", "a", "foobar".
+        assert_eq!(fnv1a64(b""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(fnv1a64(b"a"), 0xaf63_dc4c_8601_ec8c);
+        assert_eq!(fnv1a64(b"foobar"), 0x8594_4171_f739_67e8);
+    }
+
+    #[test]
+    fn digests_read_back_and_refuse_what_is_not_one() {
+        let digest = PartDigest(core::array::from_fn(|i| i as u8 * 8));
+        assert_eq!(PartDigest::parse(&digest.to_text()), Ok(digest));
+        // Exactly as written: another case is another text.
+        let upper = digest.to_text().to_uppercase().replace("SHA256", "sha256");
+        assert!(PartDigest::parse(&upper).is_err());
+        for bad in [
+            "",
+            "sha256:",
+            "sha256:00",
+            "md5:00",
+            "sha256:+0",
+            "sha256:é",
+        ] {
+            assert!(PartDigest::parse(bad).is_err(), "{bad}");
+        }
+        let long = format!("sha256:{}", "0".repeat(65));
+        assert!(PartDigest::parse(&long).is_err());
+        let not_hex = format!("sha256:{}", "g".repeat(64));
+        assert!(PartDigest::parse(&not_hex).is_err());
+    }
+}
+
+/// `--frames` and `--frame-range`: ranges, file names and the turntable.
+mod frames {
+    use std::ffi::OsStr;
+    use std::path::Path;
+    use voxtrace::glam::Vec3;
+    use voxtrace::CameraSettings;
+    use voxtrace_cli::{frame_path, parse_frame_range, turntable, FrameRange};
+
+    #[test]
+    fn ranges_parse_and_reject_garbage() {
+        assert_eq!(
+            parse_frame_range("3-5"),
+            Ok(FrameRange { first: 3, last: 5 })
+        );
+        assert_eq!(parse_frame_range("7"), Ok(FrameRange { first: 7, last: 7 }));
+        for bad in ["0-3", "5-3", "a-b", "-3", "3-", "", "1-2-3"] {
+            assert!(parse_frame_range(bad).is_err(), "{bad}");
+        }
+        assert!(FrameRange { first: 3, last: 9 }.check_within(8).is_err());
+        assert!(FrameRange { first: 3, last: 8 }.check_within(8).is_ok());
+    }
+
+    #[test]
+    fn hashes_become_padded_frame_numbers() {
+        let p = |s: &str, f| frame_path(Path::new(s), f).map(|p| p.display().to_string());
+        assert_eq!(p("out/spin_####.png", 7).unwrap(), "out/spin_0007.png");
+        assert_eq!(p("a#b#.png", 12).unwrap(), "a#b12.png");
+        assert_eq!(p("f##.png", 123).unwrap(), "f123.png");
+        assert_eq!(p("dir#/f#", 3).unwrap(), "dir#/f3");
+        assert!(p("dir#/spin.png", 1).is_err());
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_name_that_is_not_utf8_keeps_its_bytes() {
+        use std::os::unix::ffi::OsStrExt;
+        let pattern = Path::new(OsStr::from_bytes(b"d\xfe/s\xff_##\x80.png"));
+        let path = frame_path(pattern, 7).unwrap();
+        assert_eq!(path.as_os_str().as_bytes(), b"d\xfe/s\xff_07\x80.png");
+        let error = frame_path(Path::new(OsStr::from_bytes(b"s\xff.png")), 1).unwrap_err();
+        assert!(error.contains("--out s\\xff.png needs"), "{error}");
+    }
+
+    #[test]
+    fn a_turntable_comes_back_around() {
+        let base = CameraSettings {
+            lookfrom: Vec3::new(0.0, 5.0, 10.0),
+            lookat: Vec3::new(0.0, 5.0, 0.0),
+            ..CameraSettings::default()
+        };
+        assert_eq!(turntable(base, 1, 4), base);
+        let quarter = turntable(base, 2, 4).lookfrom;
+        assert!(
+            (quarter - Vec3::new(10.0, 5.0, 0.0)).length() < 1e-5,
+            "{quarter}"
+        );
+        let half = turntable(base, 3, 4).lookfrom;
+        assert!(
+            (half - Vec3::new(0.0, 5.0, -10.0)).length() < 1e-5,
+            "{half}"
+        );
+    }
+}

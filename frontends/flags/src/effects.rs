@@ -4,7 +4,7 @@
 use voxtrace::glam::Vec3;
 use voxtrace::{
     Background, Bounces, EffectPlan, Fog, IAabb, Lighting, Look, Occlusion, RenderOptions,
-    SceneMaterials, VoxModel, DEFAULT_SUN,
+    VoxModel, DEFAULT_SUN,
 };
 
 use crate::quality::{self, Sampling};
@@ -115,10 +115,7 @@ pub fn render_options(
         background: effects.background,
         lighting: lighting(effects, model),
     };
-    let materials = model.map(|m| SceneMaterials {
-        table: m.materials(),
-        emitters: m.emitters(),
-    });
+    let materials = model.map(crate::materials_of);
     let path_traced = EffectPlan::new(&options, materials).look == Look::Path;
     quality::apply(
         &effects.sampling,

@@ -13,7 +13,9 @@
 //!   frame's samples, uniform or adaptive ([`Quality`], [`Sampling`]);
 //! - [`open_side`](mod@open_side): the default view chosen by measurement,
 //!   the orbit that sees the most of the scene ([`open_side()`],
-//!   [`MODEL_FOV`]).
+//!   [`MODEL_FOV`]);
+//! - [`subject`]: the terrain or a model, what its camera frames, and the
+//!   storage built from it ([`Subject`], [`Built`], [`Backend`]).
 //!
 //! Every function takes plain values, not a frontend's parsed arguments.
 
@@ -22,9 +24,11 @@ pub mod effects;
 pub mod framing;
 pub mod open_side;
 pub mod quality;
+pub mod subject;
 
 pub use camera::{describe, resolve, Aim, CameraFlags, Stage};
 pub use effects::{render_options, Effects};
 pub use framing::{fit, framing, Boxes, FILL, MODEL_VIEW};
 pub use open_side::{open_side, seen, Seen, MODEL_FOV, OPEN_SIDE_ORBITS};
 pub use quality::{Quality, Sampling};
+pub use subject::{materials_of, Backend, Built, Subject, Tracer};

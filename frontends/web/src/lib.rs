@@ -34,13 +34,8 @@ pub mod options;
 
 use std::sync::Mutex;
 
-use voxtrace::{
-    render, Camera, DenseScene, IAabb, Node, OctreeScene, Orbit, Rect, RenderOptions, Scene,
-    Target, VoxModel, VoxelGenerator, WithMaterials, MAX_COORD,
-};
-
-use voxtrace::glam::Vec3;
-use voxtrace_flags::{describe, Aim, Boxes, Stage};
+use voxtrace::{render, Camera, Orbit, Rect, RenderOptions, Scene, Target, VoxModel, MAX_COORD};
+use voxtrace_flags::{describe, Aim, Backend, Built, Subject, Tracer};
 
 /// Why a call failed (its return value).
 #[repr(u32)]
@@ -65,57 +60,12 @@ pub enum ErrorCode {
 /// The largest terrain the page offers: a 512^3 volume (128 MiB dense).
 const MAX_SIZE: i32 = 256;
 
-/// What the page shows.
-enum Subject {
-    Terrain { seed: u64, size: i32 },
-    Model(Box<VoxModel>),
-}
-
-impl Subject {
-    fn bounds(&self) -> IAabb {
-        match self {
-            Subject::Terrain { size, .. } => IAabb::centered(*size),
-            Subject::Model(model) => model.bounds(),
-        }
-    }
-
-    /// What the camera shows, as the CLI stages it: the terrain's volume,
-    /// looked at from its center (the origin), or a model's voxels, each
-    /// its own box, looked at from its bounds' center.
-    fn stage(&self) -> Stage<'_> {
-        let (boxes, target) = match self {
-            Subject::Terrain { size, .. } => (Boxes::Bounds(IAabb::centered(*size)), Vec3::ZERO),
-            Subject::Model(model) => (
-                Boxes::Model(model),
-                (model.bounds().min + model.bounds().max).as_vec3() * 0.5,
-            ),
-        };
-        Stage {
-            boxes,
-            target,
-            default_position: None,
-        }
-    }
-
-    fn model(&self) -> Option<&VoxModel> {
-        match self {
-            Subject::Model(model) => Some(model),
-            Subject::Terrain { .. } => None,
-        }
-    }
-}
-
-enum Built {
-    Dense(DenseScene<Vec<u8>>),
-    Octree(OctreeScene<Vec<Node>, Vec<u8>>),
-}
-
 /// The module's state: what to show, its built scene and the backend it
 /// was built for, the upload buffer, the frame, the message, and the orbit
 /// of the last orbiting render (where a drag starts from).
 struct State {
     subject: Option<Subject>,
-    scene: Option<(u32, Built)>,
+    scene: Option<(Backend, Built)>,
     upload: Vec<u8>,
     frame: Vec<u32>,
     message: String,
@@ -244,28 +194,31 @@ fn render_into(state: &mut State, f: &Frame) -> ErrorCode {
         *message = "no scene yet: vt_terrain or vt_load_vox first".into();
         return ErrorCode::BadScene;
     };
-    if f.backend > 1 {
-        *message = format!("backend {} is neither 0 (dense) nor 1 (octree)", f.backend);
-        return ErrorCode::BadScene;
-    }
-    if scene.as_ref().map(|(b, _)| *b) != Some(f.backend) {
+    let backend = match f.backend {
+        0 => Backend::Dense,
+        1 => Backend::Octree,
+        n => {
+            *message = format!("backend {n} is neither 0 (dense) nor 1 (octree)");
+            return ErrorCode::BadScene;
+        }
+    };
+    if scene.as_ref().map(|(b, _)| *b) != Some(backend) {
         *scene = None; // free the old scene before building the new one
-        match build(subject, f.backend) {
-            Ok(built) => *scene = Some((f.backend, built)),
-            Err(code) => {
+        match subject.build(backend, false) {
+            Ok(built) => *scene = Some((backend, built)),
+            Err(_) => {
                 *message = "the scene could not be built (out of memory)".into();
-                return code;
+                return ErrorCode::Build;
             }
         }
     }
+    let Some((_, built)) = scene else {
+        return ErrorCode::Build;
+    };
     let stage = subject.stage();
     let size = (f.width, f.height);
     let is_model = subject.model().is_some();
-    let flags = match scene {
-        Some((_, Built::Dense(s))) => camera::flags(f.aim, size, is_model, s, &stage),
-        Some((_, Built::Octree(s))) => camera::flags(f.aim, size, is_model, s, &stage),
-        None => return ErrorCode::Build,
-    };
+    let flags = camera::flags(f.aim, size, is_model, built.scene(), &stage);
     if let Aim::Orbit(orbit) = flags.aim {
         *last_orbit = orbit;
     }
@@ -290,12 +243,12 @@ fn render_into(state: &mut State, f: &Frame) -> ErrorCode {
     let model = subject.model();
     let distance = (settings.lookfrom - settings.lookat).length();
     let options = options::render_options(f.effects, f.ao_rays, subject.bounds(), model, distance);
-    let rendered = match scene {
-        Some((_, Built::Dense(s))) => draw(s, model, &camera, &options, frame),
-        Some((_, Built::Octree(s))) => draw(s, model, &camera, &options, frame),
-        None => return ErrorCode::Build,
+    let draw = Draw {
+        camera: &camera,
+        options: &options,
+        frame,
     };
-    if !rendered {
+    if !built.trace(subject.materials(), draw) {
         *message = "the frame could not be rendered".into();
         return ErrorCode::Render;
     }
@@ -303,52 +256,29 @@ fn render_into(state: &mut State, f: &Frame) -> ErrorCode {
     ErrorCode::Ok
 }
 
-fn build(subject: &Subject, backend: u32) -> Result<Built, ErrorCode> {
-    let bounds = subject.bounds();
-    let built = match (subject, backend) {
-        (Subject::Terrain { seed, .. }, 0) => {
-            DenseScene::build(&VoxelGenerator::new(*seed), bounds).map(Built::Dense)
-        }
-        (Subject::Terrain { seed, .. }, _) => {
-            OctreeScene::build(&VoxelGenerator::new(*seed), bounds).map(Built::Octree)
-        }
-        (Subject::Model(model), 0) => DenseScene::build(model.as_ref(), bounds).map(Built::Dense),
-        (Subject::Model(model), _) => OctreeScene::build(model.as_ref(), bounds).map(Built::Octree),
-    };
-    built.map_err(|_| ErrorCode::Build)
+/// A frame rendered on this thread into `frame`, with the model's
+/// materials when there is a model (as the CLI renders it).
+struct Draw<'a> {
+    camera: &'a Camera,
+    options: &'a RenderOptions,
+    frame: &'a mut [u32],
 }
 
-/// Renders `scene` with the model's materials when there is a model (as
-/// the CLI does), into `frame`; whether it rendered.
-fn draw<S: Scene + Sync>(
-    scene: &S,
-    model: Option<&VoxModel>,
-    camera: &Camera,
-    options: &RenderOptions,
-    frame: &mut [u32],
-) -> bool {
-    match model {
-        Some(m) => {
-            let scene = WithMaterials::new(scene, m.materials(), m.emitters());
-            render(
-                &scene,
-                camera,
-                options,
-                Rect::full(camera),
-                Target::Buffer(frame),
-                None,
-            )
-            .is_ok()
-        }
-        None => render(
+impl Tracer for Draw<'_> {
+    /// Whether it rendered.
+    type Output = bool;
+
+    fn trace<S: Scene + Sync>(self, scene: &S) -> bool {
+        let (camera, target) = (self.camera, Target::Buffer(self.frame));
+        render(
             scene,
             camera,
-            options,
+            self.options,
             Rect::full(camera),
-            Target::Buffer(frame),
+            target,
             None,
         )
-        .is_ok(),
+        .is_ok()
     }
 }
 

@@ -6,7 +6,10 @@
 use std::sync::Mutex;
 
 use voxtrace::glam::Vec3;
-use voxtrace::{CameraSettings, Projection, ViewPreset};
+use voxtrace::{
+    CameraSettings, IAabb, OctreeScene, Projection, ViewPreset, VoxModel, VoxelGenerator,
+    WithMaterials,
+};
 
 use super::*;
 

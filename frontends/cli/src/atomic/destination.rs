@@ -1,13 +1,8 @@
 //! Where an output path's bytes go: a regular file (new or old) is replaced
-//! by a rename; anything else that exists (`/dev/null`, a FIFO, a device,
-//! a terminal) is written in place, as `cp` and shell redirections do,
-//! because renaming over it would swap the device for a regular file.
-//!
-//! A symlink is followed to the file it finally names, which is replaced
-//! there (the temporary file beside it, in its directory) so that the link
-//! keeps pointing where it did. A dangling link is followed too: the file it
-//! names is created, as `cp` and `>` do. A directory, or a path ending in
-//! `/`, `.` or `..` (which can only name one), is refused before any work.
+//! by a rename; anything else that exists (`/dev/null`, a FIFO, a device)
+//! is written in place, as `cp` and `>` do. A symlink, dangling or not, is
+//! followed to the file it names, which is replaced there. A directory,
+//! or a path ending in `/`, `.` or `..`, is refused before any work.
 
 use std::io;
 use std::path::{Path, PathBuf};

@@ -1,16 +1,9 @@
 //! The directory an output is replaced in, opened once and then worked in
-//! by name: the temporary file is created, renamed and removed relative to
-//! the open directory (`openat`, `renameat`, `unlinkat`), so a path the
-//! kernel takes as `--out` works however long its directory's path is
-//! (the temporary file's full path may exceed `PATH_MAX` where the
-//! target's does not), and the directory synced after the rename is the
-//! one renamed in.
-//!
-//! Also what decides, before any work, whether a file there can be
-//! replaced at all: an append-only directory (`chattr +a`) takes new files
-//! but can neither rename nor remove one, so a temporary file made there
-//! would stay behind; an immutable or append-only target cannot be
-//! replaced.
+//! by name (`openat`, `renameat`, `unlinkat`): any path the kernel takes
+//! works, and the directory synced is the one renamed in. Also what
+//! decides, before any work, whether a file there can be replaced at all
+//! (an append-only or immutable folder or file, another's file in a
+//! sticky folder).
 
 use std::ffi::{OsStr, OsString};
 use std::fs::File;

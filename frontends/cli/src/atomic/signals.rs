@@ -1,15 +1,8 @@
 //! Every signal that would end the process, caught to remove the pending
-//! temporary files first.
-//!
-//! Caught: the requests to stop (SIGINT, SIGTERM, SIGHUP, SIGQUIT), the
-//! user's (SIGUSR1, SIGUSR2), the timers' (SIGALRM, SIGVTALRM, SIGPROF),
-//! the resource limits' (SIGXCPU, SIGXFSZ) and, on Linux, SIGIO, SIGPWR,
-//! SIGSTKFLT and the real-time signals: each of them ends a process by
-//! default. Not caught: SIGKILL and SIGSTOP (no process can), the faults
-//! (SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGTRAP, SIGSYS, SIGABRT: a handler
-//! that returns would run the fault again), and SIGPIPE, which Rust's
-//! runtime ignores so that writing to a closed pipe is an `EPIPE` error,
-//! reported as one (exit 2).
+//! temporary files first: README.md's list. Not caught: SIGKILL and
+//! SIGSTOP (no process can), the faults (a handler that returns would
+//! run the fault again), and SIGPIPE, which Rust's runtime ignores so that
+//! a closed pipe is an `EPIPE` error, reported as one (exit 2).
 
 use std::os::raw::c_int;
 

@@ -22,15 +22,8 @@ use crate::units::human_bytes;
 /// one digest chunk is the last chunk before `IEND`, and last the digest.
 ///
 /// # Errors
-/// A message saying what is wrong: not a PNG or truncated, a chunk CRC
-/// that does not match, no placement chunk (not a voxtrace tile), a bad
-/// placement, a settings text whose hash is not the placement's, an image
-/// that is not the tile's size or not 8-bit RGBA, no memory for its
-/// pixels, image data whose zlib stream is corrupt, cut short, fails its
-/// Adler-32 or is followed by more data, bytes after `IEND`, no digest (a
-/// part of an older voxtrace: to be rendered again) or one elsewhere than
-/// right before `IEND`, or pixels that are not the ones the digest was
-/// taken of.
+/// One line naming the first check that fails, in that order; a part
+/// without a digest (an older voxtrace's) says to render it again.
 pub fn read_part<R: BufRead>(reader: R) -> Result<Part, String> {
     let mut options = png::DecodeOptions::default();
     // Every check the decoder has, on. Chunk CRCs are checked by default,
