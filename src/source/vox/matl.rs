@@ -166,17 +166,9 @@ pub(crate) fn materials(
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use crate::material::MaterialKind;
-    use crate::source::vox::chunks::write::{file, matl, two_voxels};
-    use crate::source::vox::VoxModel;
-
-    /// A 2x1x1 model of palette entries 1 and 2, then `matls`.
-    fn scene(matls: &[Vec<u8>]) -> VoxModel {
-        let mut children = two_voxels();
-        matls.iter().for_each(|m| children.extend_from_slice(m));
-        VoxModel::from_bytes(&file(&children)).unwrap()
-    }
+    use crate::source::vox::chunks::write::matl;
+    use crate::source::vox::{two_voxels_with as scene, VoxModel};
 
     fn has(model: &VoxModel, needles: &[&str]) -> bool {
         model

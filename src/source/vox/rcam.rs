@@ -18,6 +18,7 @@
 
 use std::format;
 use std::string::String;
+use std::vec;
 use std::vec::Vec;
 
 use glam::Vec3;
@@ -66,49 +67,37 @@ fn camera(n: usize, content: &[u8], warnings: &mut Capped) -> Result<VoxCamera, 
         }
         None => VoxCameraMode::Perspective,
     };
-    let mut read = |key: &str, default: &[f32], why: &str, ok: &dyn Fn(&[f32]) -> bool| {
-        let mut out = [0.0f32; 3];
-        let n = default.len();
-        out[..n].copy_from_slice(default);
-        if d.contains_key(key) {
-            let parsed = match n {
-                1 => numbers::<1>(d.get(key)).map(|[a]| [a, 0.0, 0.0]),
-                _ => numbers::<3>(d.get(key)),
-            };
-            match parsed.filter(|v| ok(&v[..n])) {
-                Some(v) => out = v,
-                None => {
-                    let text: Vec<String> = default.iter().map(|v| format!("{v}")).collect();
-                    warn(key, why, &text.join(" "));
+    // `n` (1 or 3) numbers, each `ok`; `default` for each when absent or not.
+    let mut read = |key: &str, n: usize, default: f32, why: &str, ok: fn(f32) -> bool| {
+        let parsed = match n {
+            1 => numbers::<1>(d.get(key)).map(|[a]| [a; 3]),
+            _ => numbers::<3>(d.get(key)),
+        };
+        match parsed.filter(|v| v.iter().all(|&v| ok(v))) {
+            Some(v) => v,
+            None => {
+                if d.contains_key(key) {
+                    warn(key, why, &vec![format!("{default}"); n].join(" "));
                 }
+                [default; 3]
             }
         }
-        out
     };
-    let any = |_: &[f32]| true;
-    let focus = read("_focus", &[0.0; 3], "is not three numbers", &any);
-    let angle = read("_angle", &[0.0; 3], "is not three numbers", &any);
-    let positive = |v: &[f32]| v[0] >= 0.0;
-    let radius = read(
-        "_radius",
-        &[0.0],
-        "is not a number of at least 0",
-        &positive,
-    )[0];
-    let frustum = |v: &[f32]| v[0] > 0.0;
-    let frustum = read(
-        "_frustum",
-        &[0.414_214],
-        "is not a positive number",
-        &frustum,
-    )[0];
-    let fov = |v: &[f32]| v[0] > 0.0 && v[0] < 180.0;
-    let fov = read(
+    let focus = read("_focus", 3, 0.0, "is not three numbers", |_| true);
+    let angle = read("_angle", 3, 0.0, "is not three numbers", |_| true);
+    let [radius, ..] = read("_radius", 1, 0.0, "is not a number of at least 0", |v| {
+        v >= 0.0
+    });
+    let [frustum, ..] = read("_frustum", 1, 0.414_214, "is not a positive number", |v| {
+        v > 0.0
+    });
+    let [fov, ..] = read(
         "_fov",
-        &[45.0],
+        1,
+        45.0,
         "is not a number of degrees in (0, 180)",
-        &fov,
-    )[0];
+        |v| v > 0.0 && v < 180.0,
+    );
     Ok(VoxCamera {
         id,
         mode,
