@@ -23,10 +23,9 @@ pub(crate) const CHUNK: i32 = 1 << CHUNK_LOG;
 pub(crate) const CHUNK_VOXELS: usize = (CHUNK * CHUNK * CHUNK) as usize;
 
 /// The most chunks a scene may fill: 2^17, 64 MiB of voxels (16 dense
-/// 256^3 models). Scattered voxels can each open a chunk of their own,
-/// and the octree then builds a tile per chunk: at this limit an instance
-/// storm of single voxels builds in about a second and 110 MB (measured;
-/// twice as many took 3.7 s of CPU and 217 MB). The voxel limit alone
+/// 256^3 models). Scattered voxels can each open a chunk of their own, and
+/// the octree then builds a tile per chunk: this keeps an instance storm of
+/// single voxels to about a second and 110 MB, where the voxel limit alone
 /// would allow far more.
 const MAX_CHUNKS: usize = 1 << 17;
 

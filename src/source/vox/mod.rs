@@ -12,13 +12,12 @@ use glam::{IVec3, U8Vec3};
 
 use crate::geom::IAabb;
 use crate::material::{MaterialKind, Materials};
-use crate::source::vox::camera::VoxCamera;
 use crate::source::vox::index::{ChunkIndex, CHUNK, CHUNK_LOG, CHUNK_VOXELS};
 use crate::source::vox::rcam::Cameras;
+use crate::source::vox::rcam::VoxCamera;
 use crate::source::vox::robj::VoxSettings;
 use crate::source::vox::scene_graph::{placements, Placement, VoxError, MAX_PLACED};
 
-pub(crate) mod camera;
 pub(crate) mod chunks;
 pub(crate) mod index;
 pub(crate) mod matl;

@@ -55,11 +55,9 @@ const MAX_DEPTH: usize = 64;
 pub(crate) const MAX_PLACEMENTS: usize = 1 << 18;
 
 /// The most voxels the instances may place, counted as the walk goes (each
-/// instance counts its model's voxels again): 2^24. Placing costs about
-/// 45 ns a voxel (counted, then written), so a small file of many
-/// overlapping instances of a big model (which stays under the chunk
-/// limit) loads in under a second; 2^28 took 12 s from a 16 KB file.
-/// Real scenes place a few million at most.
+/// instance counts its model's voxels again): 2^24, so that a small file
+/// of many overlapping instances of a big model (under the chunk limit)
+/// loads in under a second. Real scenes place a few million at most.
 pub(crate) const MAX_PLACED: u64 = 1 << 24;
 
 /// The most scene-graph nodes one walk visits, counting a shared subtree
@@ -303,8 +301,7 @@ fn translation_of(value: Option<&String>) -> Result<IVec3, VoxError> {
         .collect::<Result<_, _>>()
         .map_err(|_| VoxError::Invalid(format!("translation '{value}' is not three integers")))?;
     match parts[..] {
-        // unsigned_abs: i32::MIN has no i32 absolute value (found by the
-        // scene_graph fuzz target).
+        // unsigned_abs: i32::MIN has no i32 absolute value.
         [x, y, z]
             if [x, y, z]
                 .iter()
