@@ -144,31 +144,26 @@ pub(crate) fn placements(data: &DotVoxData) -> Result<Vec<Placement>, VoxError> 
             )));
         }
     }
-    let mut out = Vec::new();
     if data.scenes.is_empty() {
-        for model in 0..data.models.len() {
-            out.push(Placement {
-                model,
-                rotation: Z_UP_TO_Y_UP,
-                translation: IVec3::ZERO,
-            });
-        }
-        return Ok(out);
+        let at_origin = |model| Placement {
+            model,
+            rotation: Z_UP_TO_Y_UP,
+            translation: IVec3::ZERO,
+        };
+        return Ok((0..data.models.len()).map(at_origin).collect());
     }
     let mut walker = Walker {
         data,
         visiting: HashSet::new(),
-        out,
+        out: Vec::new(),
         visits: 0,
         voxels: 0,
     };
-    walker.walk(0, IMat3::IDENTITY, IVec3::ZERO, 0)?;
-    let mut out = walker.out;
-    for p in &mut out {
-        p.rotation = Z_UP_TO_Y_UP * p.rotation;
-        p.translation = Z_UP_TO_Y_UP * p.translation;
-    }
-    Ok(out)
+    // The file's z-up world turned y-up first: every transform below it
+    // then places in voxtrace's axes (integer math, so exactly as turning
+    // each placement after).
+    walker.walk(0, Z_UP_TO_Y_UP, IVec3::ZERO, 0)?;
+    Ok(walker.out)
 }
 
 /// The walk over the scene graph, with what it has counted so far.
@@ -184,7 +179,7 @@ struct Walker<'d> {
 }
 
 impl Walker<'_> {
-    /// Visits node `index` under the accumulated transform (z-up).
+    /// Visits node `index` under the accumulated transform.
     fn walk(
         &mut self,
         index: u32,
