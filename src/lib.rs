@@ -116,7 +116,7 @@ pub use source::noise::{Perlin, SplitMix64};
 pub use source::terrain::{VoxelGenerator, GRASS, HEIGHT, MOUNTAIN, ROUGHNESS, SCALE, SNOW, WATER};
 #[cfg(feature = "vox")]
 pub use source::vox::{
-    camera::{VoxCamera, VoxCameraMode},
+    rcam::{VoxCamera, VoxCameraMode},
     robj::{VoxSettings, VoxSun},
     scene_graph::VoxError,
     VoxModel,

@@ -30,14 +30,10 @@ pub fn from_rgba_image(image: &RgbaImage) -> Vec<u32> {
 
 impl From<&Framebuffer> for RgbaImage {
     fn from(frame: &Framebuffer) -> RgbaImage {
-        let bytes: Vec<u8> = frame
-            .to_vec()
-            .iter()
-            .flat_map(|p| p.to_ne_bytes())
-            .collect();
+        let (width, height) = (frame.width(), frame.height());
         // A framebuffer's pixel count is exactly width * height.
-        RgbaImage::from_raw(frame.width(), frame.height(), bytes)
-            .unwrap_or_else(|| RgbaImage::new(frame.width(), frame.height()))
+        to_rgba_image(width, height, &frame.to_vec())
+            .unwrap_or_else(|| RgbaImage::new(width, height))
     }
 }
 

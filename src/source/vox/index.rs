@@ -23,10 +23,9 @@ pub(crate) const CHUNK: i32 = 1 << CHUNK_LOG;
 pub(crate) const CHUNK_VOXELS: usize = (CHUNK * CHUNK * CHUNK) as usize;
 
 /// The most chunks a scene may fill: 2^17, 64 MiB of voxels (16 dense
-/// 256^3 models). Scattered voxels can each open a chunk of their own,
-/// and the octree then builds a tile per chunk: at this limit an instance
-/// storm of single voxels builds in about a second and 110 MB (measured;
-/// twice as many took 3.7 s of CPU and 217 MB). The voxel limit alone
+/// 256^3 models). Scattered voxels can each open a chunk of their own, and
+/// the octree then builds a tile per chunk: this keeps an instance storm of
+/// single voxels to about a second and 110 MB, where the voxel limit alone
 /// would allow far more.
 const MAX_CHUNKS: usize = 1 << 17;
 
@@ -67,22 +66,22 @@ fn morton(c: UVec3) -> u64 {
     spread(c.x) | spread(c.y) << 1 | spread(c.z) << 2
 }
 
-/// The unsigned chunk coordinate of a chunk key, if it is in range.
-fn unsigned(key: IVec3) -> Option<UVec3> {
-    let c = key + OFFSET;
-    (c.cmpge(IVec3::ZERO).all() && c.cmple(IVec3::splat(LAST as i32)).all()).then(|| c.as_uvec3())
+/// The inverse of [`morton`].
+fn unmorton(code: u64) -> UVec3 {
+    UVec3::new(compact(code), compact(code >> 1), compact(code >> 2))
 }
 
 /// The code of the chunk `key` (chunk coordinates, position >> 3), or
 /// `None` outside the range voxels may be placed in.
 pub(crate) fn code(key: IVec3) -> Option<u64> {
-    unsigned(key).map(morton)
+    let c = key + OFFSET;
+    let inside = c.cmpge(IVec3::ZERO).all() && c.cmple(IVec3::splat(LAST as i32)).all();
+    inside.then(|| morton(c.as_uvec3()))
 }
 
 /// The chunk key a code stands for.
 pub(crate) fn key(code: u64) -> IVec3 {
-    let c = UVec3::new(compact(code), compact(code >> 1), compact(code >> 2));
-    c.as_ivec3() - OFFSET
+    unmorton(code).as_ivec3() - OFFSET
 }
 
 /// The occupied chunks, as sorted distinct codes: chunk `i` of the scene
@@ -227,7 +226,7 @@ const SCAN: usize = 8;
 /// Whether any of `codes` lies in `[lo, hi]`, testing each.
 fn scan(codes: &[u64], lo: UVec3, hi: UVec3) -> bool {
     codes.iter().any(|&c| {
-        let k = UVec3::new(compact(c), compact(c >> 1), compact(c >> 2));
+        let k = unmorton(c);
         k.cmpge(lo).all() && k.cmple(hi).all()
     })
 }

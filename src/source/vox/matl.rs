@@ -74,66 +74,53 @@ pub(crate) fn materials(
             }
             None => m.material.material_type().unwrap_or("_diffuse"),
         };
-        // `required`: the key that says how much of the type the material has;
-        // without it the type's full strength is used, with a warning.
-        let mut get =
-            |keys: &[&str], required: bool, default: f32, lo: f32, hi: f32, what: &str| -> f32 {
-                for key in keys {
-                    match number(m, key) {
-                        Ok(None) => continue,
-                        Ok(Some(v)) if (lo..=hi).contains(&v) => return v,
-                        Ok(Some(v)) => {
-                            let clamped = v.clamp(lo, hi);
-                            lines.push(format!(
-                                "material {index}: {key} is {v}, {what}; using {clamped}"
-                            ));
-                            return clamped;
-                        }
-                        Err(e) => {
-                            lines.push(format!("{e}; using {default}"));
-                            return default;
-                        }
+        // The first of `keys` present, clamped to [0, hi]; `required`: the
+        // key that says how much of the type the material has (without it
+        // the type's full strength is used, with a warning).
+        let mut get = |keys: &[&str], required: bool, default: f32, hi: f32, what: &str| {
+            for key in keys {
+                match number(m, key) {
+                    Ok(None) => continue,
+                    Ok(Some(v)) if (0.0..=hi).contains(&v) => return v,
+                    Ok(Some(v)) => {
+                        let clamped = v.clamp(0.0, hi);
+                        lines.push(format!(
+                            "material {index}: {key} is {v}, {what}; using {clamped}"
+                        ));
+                        return clamped;
+                    }
+                    Err(e) => {
+                        lines.push(format!("{e}; using {default}"));
+                        return default;
                     }
                 }
-                if required {
-                    lines.push(format!(
-                        "material {index}: {} is missing; using {default}",
-                        keys[0]
-                    ));
-                }
-                default
-            };
-        let unit = "outside [0, 1]";
+            }
+            if required {
+                lines.push(format!(
+                    "material {index}: {} is missing; using {default}",
+                    keys[0]
+                ));
+            }
+            default
+        };
+        let (unit, max) = ("outside [0, 1]", f32::MAX);
         let material = match kind {
             "_diffuse" => None,
             "_metal" => {
-                let metal = get(&["_metal", "_weight"], true, 1.0, 0.0, 1.0, unit);
-                let rough = get(&["_rough"], false, 0.0, 0.0, 1.0, unit);
+                let metal = get(&["_metal", "_weight"], true, 1.0, 1.0, unit);
+                let rough = get(&["_rough"], false, 0.0, 1.0, unit);
                 Material::metal(metal, rough).ok()
             }
             "_glass" => {
-                let trans = get(&["_trans", "_alpha", "_weight"], true, 1.0, 0.0, 1.0, unit);
-                let rough = get(&["_rough"], false, 0.0, 0.0, 1.0, unit);
-                let ior = get(
-                    &["_ior"],
-                    false,
-                    0.5,
-                    0.0,
-                    f32::MAX,
-                    "below 0 (an index of refraction below 1)",
-                );
+                let trans = get(&["_trans", "_alpha", "_weight"], true, 1.0, 1.0, unit);
+                let rough = get(&["_rough"], false, 0.0, 1.0, unit);
+                let why = "below 0 (an index of refraction below 1)";
+                let ior = get(&["_ior"], false, 0.5, max, why);
                 Material::glass(trans, 1.0 + ior, rough).ok()
             }
             "_emit" => {
-                let emit = get(
-                    &["_emit", "_weight"],
-                    true,
-                    1.0,
-                    0.0,
-                    f32::MAX,
-                    "negative emission",
-                );
-                let flux = get(&["_flux"], false, 0.0, 0.0, f32::MAX, "negative flux");
+                let emit = get(&["_emit", "_weight"], true, 1.0, max, "negative emission");
+                let flux = get(&["_flux"], false, 0.0, max, "negative flux");
                 (emit > 0.0)
                     .then(|| Material::emissive(emit * (1.0 + flux)).ok())
                     .flatten()
@@ -166,17 +153,9 @@ pub(crate) fn materials(
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use crate::material::MaterialKind;
-    use crate::source::vox::chunks::write::{file, matl, two_voxels};
-    use crate::source::vox::VoxModel;
-
-    /// A 2x1x1 model of palette entries 1 and 2, then `matls`.
-    fn scene(matls: &[Vec<u8>]) -> VoxModel {
-        let mut children = two_voxels();
-        matls.iter().for_each(|m| children.extend_from_slice(m));
-        VoxModel::from_bytes(&file(&children)).unwrap()
-    }
+    use crate::source::vox::chunks::write::matl;
+    use crate::source::vox::{two_voxels_with as scene, VoxModel};
 
     fn has(model: &VoxModel, needles: &[&str]) -> bool {
         model

@@ -27,24 +27,15 @@ pub(crate) struct Matl<'a> {
 /// The file's MATL chunks, in file order: dot_vox's materials `read`, with
 /// the ones it dropped put back in their place.
 ///
-/// Why MATL bytes are read here again, and only here: dot_vox 5.2 reads
-/// each string of a MATL chunk's DICT with `str::from_utf8`, and a string
-/// that is not UTF-8 turns the whole chunk into `Chunk::Invalid`, which
-/// `DotVoxData` leaves out without a trace. One bad byte in one value
-/// would lose every key of the material, silently. dot_vox keeps neither
-/// the dropped chunk nor its place, so keeping the rest of the material
-/// takes reading the chunk from the file's bytes, with the chunk and DICT
-/// reader the rOBJ and rCAM chunks use (`chunks.rs`).
-///
-/// The scan walks the MATL chunks among MAIN's children in file order. A
-/// chunk whose strings are all UTF-8 is dot_vox's: the next material of
-/// `read` is taken as it is (never parsed again). A chunk with a string
-/// that is not UTF-8 is rebuilt from its UTF-8 pairs, its other keys and
-/// values kept for the warnings. A malformed chunk is skipped, as dot_vox
-/// skips it. Materials of `read` left over (were the scan to see fewer
-/// chunks than dot_vox) follow in their order. So a file without such a
-/// string gives exactly dot_vox's list, and any other file the same list
-/// with the dropped materials added where they stood.
+/// Why: dot_vox 5.2 turns a MATL chunk with one string that is not UTF-8
+/// into `Chunk::Invalid` and leaves it out, place and all, so one bad byte
+/// would silently lose every key of the material. The scan walks the MATL
+/// chunks among MAIN's children: one whose strings are all UTF-8 takes the
+/// next material of `read` as it is; one with a string that is not UTF-8
+/// is rebuilt from its UTF-8 pairs, the rest kept for the warnings; a
+/// malformed one is skipped, as dot_vox skips it. Materials of `read` left
+/// over follow in their order. So a file without such a string gives
+/// exactly dot_vox's list.
 pub(crate) fn matl_chunks<'a>(read: &'a [VoxMaterial], bytes: &[u8]) -> Vec<Matl<'a>> {
     let plain = |material: &'a VoxMaterial| Matl {
         material: Cow::Borrowed(material),
@@ -130,15 +121,8 @@ mod tests {
 
     use super::*;
     use crate::material::MaterialKind;
-    use crate::source::vox::chunks::write::{file, matl, two_voxels};
-    use crate::source::vox::VoxModel;
-
-    /// A 2x1x1 model of palette entries 1 and 2, then `matls`.
-    fn scene(matls: &[Vec<u8>]) -> VoxModel {
-        let mut children = two_voxels();
-        matls.iter().for_each(|m| children.extend_from_slice(m));
-        VoxModel::from_bytes(&file(&children)).unwrap()
-    }
+    use crate::source::vox::chunks::write::{file, matl};
+    use crate::source::vox::two_voxels_with as scene;
 
     #[test]
     fn rebuilt_materials_keep_their_place_in_the_file() {

@@ -12,13 +12,12 @@ use glam::{IVec3, U8Vec3};
 
 use crate::geom::IAabb;
 use crate::material::{MaterialKind, Materials};
-use crate::source::vox::camera::VoxCamera;
 use crate::source::vox::index::{ChunkIndex, CHUNK, CHUNK_LOG, CHUNK_VOXELS};
 use crate::source::vox::rcam::Cameras;
+use crate::source::vox::rcam::VoxCamera;
 use crate::source::vox::robj::VoxSettings;
 use crate::source::vox::scene_graph::{placements, Placement, VoxError, MAX_PLACED};
 
-pub(crate) mod camera;
 pub(crate) mod chunks;
 pub(crate) mod index;
 pub(crate) mod matl;
@@ -185,21 +184,11 @@ impl VoxModel {
         }
         used[0] = false;
         *self.materials = matl::materials(matl, &used, &mut self.warnings);
-        let glows = |m: u8| self.materials.get(m).kind() == MaterialKind::Emissive;
-        let mut emitters = Vec::new();
-        for (key, slot) in self.index.keys() {
-            for (i, &m) in self.chunks[slot].iter().enumerate() {
-                if m != 0 && glows(m) {
-                    let i = i as i32;
-                    let local = IVec3::new(
-                        i & (CHUNK - 1),
-                        (i >> CHUNK_LOG) & (CHUNK - 1),
-                        i >> (2 * CHUNK_LOG),
-                    );
-                    emitters.push((key << CHUNK_LOG) + local);
-                }
-            }
-        }
+        let mut emitters: Vec<IVec3> = self
+            .solid()
+            .filter(|&(_, m)| self.materials.get(m).kind() == MaterialKind::Emissive)
+            .map(|(pos, _)| pos)
+            .collect();
         // The chunks are in Morton order: sort, so the light list is in
         // position order (the order light samples pick them in).
         emitters.sort_unstable_by_key(|p| (p.x, p.y, p.z));
@@ -282,17 +271,20 @@ impl VoxModel {
     /// The position of every solid voxel, chunk by chunk (in no particular
     /// order): for framing a camera on the voxels themselves.
     pub fn positions(&self) -> impl Iterator<Item = IVec3> + '_ {
+        self.solid().map(|(pos, _)| pos)
+    }
+
+    /// Every solid voxel's position and material, chunk by chunk.
+    fn solid(&self) -> impl Iterator<Item = (IVec3, u8)> + '_ {
         self.index.keys().flat_map(move |(key, slot)| {
-            let chunk = &self.chunks[slot];
-            (0..CHUNK_VOXELS).filter(|&i| chunk[i] != 0).map(move |i| {
-                let i = i as i32;
-                let local = IVec3::new(
-                    i & (CHUNK - 1),
-                    (i >> CHUNK_LOG) & (CHUNK - 1),
-                    i >> (2 * CHUNK_LOG),
-                );
-                (key << CHUNK_LOG) + local
-            })
+            let corner = key << CHUNK_LOG;
+            (0..CHUNK_VOXELS as i32)
+                .zip(self.chunks[slot].iter().copied())
+                .filter(|&(_, m)| m != 0)
+                .map(move |(i, m)| {
+                    let l = IVec3::new(i, i >> CHUNK_LOG, i >> (2 * CHUNK_LOG));
+                    (corner + (l & (CHUNK - 1)), m)
+                })
         })
     }
 
@@ -300,6 +292,15 @@ impl VoxModel {
     fn chunk(&self, pos: IVec3) -> Option<&[u8; CHUNK_VOXELS]> {
         self.chunks.get(self.index.slot(pos >> CHUNK_LOG)?)
     }
+}
+
+/// A loaded 2x1x1 model of palette entries 1 and 2, then `matls`: the
+/// MATL tests' scene.
+#[cfg(test)]
+pub(crate) fn two_voxels_with(matls: &[Vec<u8>]) -> VoxModel {
+    let mut children = chunks::write::two_voxels();
+    matls.iter().for_each(|m| children.extend_from_slice(m));
+    VoxModel::from_bytes(&chunks::write::file(&children)).unwrap()
 }
 
 impl VoxelSource for VoxModel {

@@ -17,6 +17,7 @@ use std::string::String;
 use glam::Vec3;
 
 use crate::source::vox::chunks::{chunks, dict, numbers};
+use crate::source::vox::rcam::y_up;
 
 /// The light and bounce settings a file holds.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -60,9 +61,7 @@ pub(crate) fn settings(bytes: &[u8]) -> VoxSettings {
                 let [elevation, azimuth] = numbers::<2>(d.get("_angle")).unwrap_or([50.0, 50.0]);
                 let (e, a) = (elevation.to_radians(), azimuth.to_radians());
                 let (cos, sin) = (libm::cosf, libm::sinf);
-                // MagicaVoxel (x, y, z) z-up is voxtrace (x, z, -y).
-                let mv = Vec3::new(cos(e) * cos(a), cos(e) * sin(a), sin(e));
-                let direction = Vec3::new(mv.x, mv.z, -mv.y);
+                let direction = y_up(Vec3::new(cos(e) * cos(a), cos(e) * sin(a), sin(e)));
                 let [area] = numbers::<1>(d.get("_area")).unwrap_or([0.0]);
                 s.sun = Some(VoxSun {
                     direction,

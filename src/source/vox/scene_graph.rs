@@ -55,11 +55,9 @@ const MAX_DEPTH: usize = 64;
 pub(crate) const MAX_PLACEMENTS: usize = 1 << 18;
 
 /// The most voxels the instances may place, counted as the walk goes (each
-/// instance counts its model's voxels again): 2^24. Placing costs about
-/// 45 ns a voxel (counted, then written), so a small file of many
-/// overlapping instances of a big model (which stays under the chunk
-/// limit) loads in under a second; 2^28 took 12 s from a 16 KB file.
-/// Real scenes place a few million at most.
+/// instance counts its model's voxels again): 2^24, so that a small file
+/// of many overlapping instances of a big model (under the chunk limit)
+/// loads in under a second. Real scenes place a few million at most.
 pub(crate) const MAX_PLACED: u64 = 1 << 24;
 
 /// The most scene-graph nodes one walk visits, counting a shared subtree
@@ -146,31 +144,26 @@ pub(crate) fn placements(data: &DotVoxData) -> Result<Vec<Placement>, VoxError> 
             )));
         }
     }
-    let mut out = Vec::new();
     if data.scenes.is_empty() {
-        for model in 0..data.models.len() {
-            out.push(Placement {
-                model,
-                rotation: Z_UP_TO_Y_UP,
-                translation: IVec3::ZERO,
-            });
-        }
-        return Ok(out);
+        let at_origin = |model| Placement {
+            model,
+            rotation: Z_UP_TO_Y_UP,
+            translation: IVec3::ZERO,
+        };
+        return Ok((0..data.models.len()).map(at_origin).collect());
     }
     let mut walker = Walker {
         data,
         visiting: HashSet::new(),
-        out,
+        out: Vec::new(),
         visits: 0,
         voxels: 0,
     };
-    walker.walk(0, IMat3::IDENTITY, IVec3::ZERO, 0)?;
-    let mut out = walker.out;
-    for p in &mut out {
-        p.rotation = Z_UP_TO_Y_UP * p.rotation;
-        p.translation = Z_UP_TO_Y_UP * p.translation;
-    }
-    Ok(out)
+    // The file's z-up world turned y-up first: every transform below it
+    // then places in voxtrace's axes (integer math, so exactly as turning
+    // each placement after).
+    walker.walk(0, Z_UP_TO_Y_UP, IVec3::ZERO, 0)?;
+    Ok(walker.out)
 }
 
 /// The walk over the scene graph, with what it has counted so far.
@@ -186,7 +179,7 @@ struct Walker<'d> {
 }
 
 impl Walker<'_> {
-    /// Visits node `index` under the accumulated transform (z-up).
+    /// Visits node `index` under the accumulated transform.
     fn walk(
         &mut self,
         index: u32,
@@ -303,8 +296,7 @@ fn translation_of(value: Option<&String>) -> Result<IVec3, VoxError> {
         .collect::<Result<_, _>>()
         .map_err(|_| VoxError::Invalid(format!("translation '{value}' is not three integers")))?;
     match parts[..] {
-        // unsigned_abs: i32::MIN has no i32 absolute value (found by the
-        // scene_graph fuzz target).
+        // unsigned_abs: i32::MIN has no i32 absolute value.
         [x, y, z]
             if [x, y, z]
                 .iter()
