@@ -109,6 +109,8 @@ pub use render::options::{
 pub use render::plan::{EffectPlan, Look};
 pub use render::rounds::{PixelSamples, Rounds, RoundsDone, UNIFORM_ROUND};
 pub use render::shade::{pack, shade, sky, unpack, FLAT_SKY, SKY_HORIZON, SKY_ZENITH};
+#[doc(hidden)]
+pub use render::shader::occlusion_rays;
 pub use render::stats::{RayStats, Rect};
 pub use render::view::{Orbit, Projection, ViewPreset};
 pub use scene::{Hit, Reach, Scene, Traced, Visit, WalkMemory, PACKET};

@@ -313,6 +313,29 @@ impl Lit<'_, '_, '_> {
     }
 }
 
+/// The occlusion rays `--ao` with `rays` rays a hit traces from the hit
+/// `hit` of the camera ray `ray`, sample `sample` of pixel `pixel`, in the
+/// order [`Lit::open`] makes them ([`occlusion_ray`]): `None` for one that
+/// cannot leave the face (counted open), nothing for a hit without a face.
+/// Not API: the door benches/embree takes to trace the very same rays
+/// through Intel Embree (`voxtrace-report embree-input --occlusion`).
+#[doc(hidden)]
+pub fn occlusion_rays(
+    ray: Ray,
+    hit: Hit,
+    pixel: (u32, u32),
+    sample: u32,
+    rays: u16,
+) -> impl Iterator<Item = Option<Ray>> {
+    let (x, y) = pixel;
+    let n = if hit.face.is_some() {
+        u32::from(rays)
+    } else {
+        0
+    };
+    (0..n).map(move |j| occlusion_ray(&ray, &hit, hit.face?, (x, y, sample), j))
+}
+
 /// The occlusion ray `j` of sample `sample` of pixel `(x, y)`, from the
 /// hit `hit` of its camera ray `ray`, entered through `entered`: `None`
 /// when no ray can leave the face (it then counts as open).

@@ -45,6 +45,8 @@ use crate::scene::{Hit, Reach, Scene, WalkMemory};
 mod kernels;
 mod lit;
 
+pub use lit::occlusion_rays;
+
 /// How wide the debug view's edges are: a fraction of a pixel's footprint
 /// each side of the edge.
 const EDGE_PIXELS: f32 = 0.75;
