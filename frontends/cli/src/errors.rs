@@ -133,7 +133,9 @@ pub fn clap_failure(error: clap::Error, argv: &[OsString]) -> std::process::Exit
 /// and hints, and a value parser's message.
 pub fn one_line(mut error: clap::Error, argv: &[OsString]) -> String {
     // Of the values as given: the tips escape what they quote.
-    let tip = negative_value_tip(&error, argv).or_else(|| vox_file_tip(&error, argv));
+    let tip = negative_value_tip(&error, argv)
+        .or_else(|| vox_file_tip(&error, argv))
+        .or_else(|| first_words_tip(&error));
     escape_context(&mut error, argv);
     let mut text = error.render().ansi().to_string();
     // A value parser's message (after "invalid value '...' for '--flag': ")
@@ -272,6 +274,33 @@ fn vox_file_tip(error: &clap::Error, argv: &[OsString]) -> Option<String> {
         shown
     };
     is_vox.then(|| format!("tip: to render a .vox file, write --vox {shown}"))
+}
+
+/// For what other renderers' users type first: `-o` (the image is
+/// `--out`), `render` as a subcommand (a render needs none), and a size
+/// in one flag (`--width 640x360`: it is two).
+fn first_words_tip(error: &clap::Error) -> Option<String> {
+    let context = |kind| match error.get(kind) {
+        Some(ContextValue::String(value)) => Some(value.as_str()),
+        _ => None,
+    };
+    match error.kind() {
+        ErrorKind::UnknownArgument if context(ContextKind::InvalidArg)? == "-o" => {
+            Some("tip: the image file is --out FILE".into())
+        }
+        ErrorKind::InvalidSubcommand if context(ContextKind::InvalidSubcommand)? == "render" => {
+            Some("tip: voxtrace renders without a subcommand: drop 'render'".into())
+        }
+        ErrorKind::ValueValidation => {
+            let flag = context(ContextKind::InvalidArg)?;
+            let (w, h) = context(ContextKind::InvalidValue)?.split_once(['x', 'X'])?;
+            let size = |n: &str| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit());
+            let is_size_flag = flag.starts_with("--width") || flag.starts_with("--height");
+            (is_size_flag && size(w) && size(h))
+                .then(|| format!("tip: a size is two flags: --width {w} --height {h}"))
+        }
+        _ => None,
+    }
 }
 
 fn text_has_tip(error: &clap::Error) -> bool {

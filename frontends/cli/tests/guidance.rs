@@ -31,6 +31,44 @@ fn a_vox_file_where_a_flag_belongs_says_to_use_vox() {
 }
 
 #[test]
+fn what_other_renderers_users_type_first_says_what_to_type() {
+    let cases: [(&[&str], &[&str]); 6] = [
+        (
+            &["-o", "out.png"],
+            &["'-o'", "tip: the image file is --out FILE"],
+        ),
+        (
+            &["--width", "640x360"],
+            &[
+                "'640x360'",
+                "tip: a size is two flags: --width 640 --height 360",
+            ],
+        ),
+        (
+            &["--height=1920X1080"],
+            &["tip: a size is two flags: --width 1920 --height 1080"],
+        ),
+        (
+            &["render", "--vox", "m.vox"],
+            &[
+                "'render'",
+                "tip: voxtrace renders without a subcommand: drop 'render'",
+            ],
+        ),
+        (&["render"], &["drop 'render'"]),
+        // Not a size: named, no tip.
+        (&["--width", "64x"], &["'64x'"]),
+    ];
+    for (args, needles) in cases {
+        let result = voxtrace(args.iter().copied());
+        assert_refused(&result, needles);
+        if args == ["--width", "64x"] {
+            assert!(!stderr(&result).contains("tip:"), "{}", stderr(&result));
+        }
+    }
+}
+
+#[test]
 fn help_is_a_word_too() {
     let help = voxtrace(["help"]);
     assert!(help.status.success(), "{}", stderr(&help));
