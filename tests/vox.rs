@@ -410,3 +410,92 @@ fn row_ends_are_the_ends_of_every_row_of_voxels() {
         }
     }
 }
+
+/// `model` with every voxel moved by `(dx, 0, 0)` in a wider size and
+/// recolored `+ shift`: a distinct frame of an animation.
+fn frame_model(dx: u8, shift: u8) -> Model {
+    let mut model = l_model();
+    model.size.x += u32::from(dx);
+    for v in &mut model.voxels {
+        v.x += dx;
+        v.i += shift;
+    }
+    model
+}
+
+/// A file holding `models` and no scene graph.
+fn without_scene_graph(models: Vec<Model>) -> DotVoxData {
+    let mut data = scene(models, &[]);
+    data.scenes.clear();
+    data
+}
+
+/// A model's voxels and bounds: what a render of it depends on.
+fn content(model: &VoxModel) -> (voxtrace::IAabb, Vec<(IVec3, u8)>) {
+    (model.bounds(), solids(model))
+}
+
+#[test]
+fn an_animation_without_a_scene_graph_shows_one_frame_at_a_time() {
+    let frames = [(0, 0), (2, 30), (1, 60)];
+    let model = |k: usize| frame_model(frames[k].0, frames[k].1);
+    let file = bytes(&without_scene_graph((0..3).map(model).collect()));
+    let alone = |k: usize| {
+        let still = bytes(&without_scene_graph(vec![model(k)]));
+        content(&VoxModel::from_bytes(&still).unwrap())
+    };
+    let first = VoxModel::from_bytes(&file).unwrap();
+    assert_eq!(first.frames(), 3);
+    assert_eq!(content(&first), alone(0), "the default is the first frame");
+    for k in 0..3 {
+        let frame = VoxModel::from_bytes_frame(&file, k as u32).unwrap();
+        assert_eq!(content(&frame), alone(k), "frame {k}");
+    }
+    assert_ne!(alone(0), alone(1));
+    let past = VoxModel::from_bytes_frame(&file, 3)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        past.contains("3 animation frames (0 to 2), no frame 3"),
+        "{past}"
+    );
+    // A still file has one frame.
+    let still = bytes(&without_scene_graph(vec![model(1)]));
+    assert_eq!(VoxModel::from_bytes(&still).unwrap().frames(), 1);
+}
+
+#[test]
+fn scene_graph_keyframes_pick_each_frames_transform_and_shape() {
+    // One instance whose transform moves at frame 2 and whose shape shows
+    // model 0, then model 1 from frame 1 (MagicaVoxel's `_f` keyframes).
+    let models = || vec![frame_model(0, 0), frame_model(1, 40)];
+    let mut data = scene(models(), &[(0, "0 0 0", "")]);
+    let SceneNode::Transform { frames, .. } = &mut data.scenes[2] else {
+        panic!("the instance's transform");
+    };
+    *frames = vec![
+        dot_vox::Frame::new(attrs(&[("_t", "0 0 0")])),
+        dot_vox::Frame::new(attrs(&[("_f", "2"), ("_t", "10 0 -3")])),
+    ];
+    let SceneNode::Shape { models: shapes, .. } = &mut data.scenes[3] else {
+        panic!("the instance's shape");
+    };
+    shapes.push(ShapeModel {
+        model_id: 1,
+        attributes: attrs(&[("_f", "1")]),
+    });
+    let file = bytes(&data);
+    let still = |model: u32, t: &str| {
+        let one = scene(models(), &[(model, t, "")]);
+        content(&VoxModel::from_bytes(&bytes(&one)).unwrap())
+    };
+    assert_eq!(VoxModel::from_bytes(&file).unwrap().frames(), 3);
+    let frame = |k| content(&VoxModel::from_bytes_frame(&file, k).unwrap());
+    assert_eq!(
+        content(&VoxModel::from_bytes(&file).unwrap()),
+        still(0, "0 0 0")
+    );
+    assert_eq!(frame(0), still(0, "0 0 0"));
+    assert_eq!(frame(1), still(1, "0 0 0"));
+    assert_eq!(frame(2), still(1, "10 0 -3"));
+}

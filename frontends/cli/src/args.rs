@@ -44,6 +44,12 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     pub vox: Option<PathBuf>,
 
+    /// Render animation frame N (from 0) of the --vox file: its model N
+    /// when it holds several and no scene graph (MagicaVoxel's animations),
+    /// else the scene graph's keyframes at N [default: 0, the first].
+    #[arg(long, value_name = "N", requires = "vox")]
+    pub frame: Option<u32>,
+
     /// Scene extent N: the volume is [-N, N)^3.
     #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(i32).range(1..=voxtrace::MAX_COORD as i64))]
     pub size: i32,

@@ -104,7 +104,8 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
                 .into(),
         );
     }
-    let subject = Subject::load(args.vox.as_deref(), args.seed, args.size)?;
+    let frame = args.frame.unwrap_or(0);
+    let subject = Subject::load(args.vox.as_deref(), frame, args.seed, args.size)?;
     let explicit = Args::camera_given(matches);
     let flags = view::measured_default(args.camera_flags(), explicit, &subject, args.max_memory);
     let file = args.camera;
@@ -127,6 +128,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     let mut notes = notes(&options, &plan, &args.given(matches), &settings, format);
     notes.extend(low_samples_hint(&options, &plan, args.denoise));
     notes.extend(camera_inside_note(&cameras, &subject, args.camera));
+    notes.extend(animation_note(&subject, args.frame));
     let (backend, threads, tile) = (args.backend, args.threads, tile.as_ref());
     let job = Job {
         backend,
@@ -308,6 +310,18 @@ fn low_samples_hint(options: &RenderOptions, plan: &EffectPlan, denoise: bool) -
 /// only that voxel), saying what moves it: `--position`, or for a file's
 /// camera (`file_camera`, which refuses `--position`) another camera or
 /// the default view.
+/// For a file of several animation frames rendered without `--frame`:
+/// which frame this is, and how to render another.
+fn animation_note(subject: &Subject, frame: Option<u32>) -> Option<String> {
+    let frames = subject.shown.model()?.frames();
+    (frames > 1 && frame.is_none()).then(|| {
+        format!(
+            "the file holds {frames} animation frames; this is frame 0 (--frame N renders frame N, 0 to {})",
+            frames - 1
+        )
+    })
+}
+
 fn camera_inside_note(
     cameras: &[Frame],
     subject: &Subject,

@@ -17,6 +17,7 @@ const FLAGS: &[(&str, &str)] = &[
     ("subject.seed", "--seed"),
     ("subject.size", "--size"),
     ("subject.fnv1a64", "the --vox file's contents"),
+    ("subject.frame", "--frame"),
     (
         "subject",
         "the scene (--vox, or the terrain's --seed and --size)",

@@ -25,6 +25,9 @@ pub struct Subject<'a> {
     /// Whether the terrain's seed was drawn at random (no `--seed`): it
     /// is printed once the run has succeeded.
     pub random: bool,
+    /// The animation frame shown (`--frame`; 0 for a still and the
+    /// terrain).
+    pub frame: u32,
 }
 
 /// A seed from the clock and process id: different per run, printed so the
@@ -52,7 +55,12 @@ impl<'a> Subject<'a> {
     ///
     /// # Errors
     /// One line naming the file, when it cannot be loaded.
-    pub fn load(vox: Option<&'a Path>, seed: Option<u64>, size: i32) -> Result<Self, String> {
+    pub fn load(
+        vox: Option<&'a Path>,
+        frame: u32,
+        seed: Option<u64>,
+        size: i32,
+    ) -> Result<Self, String> {
         let Some(path) = vox else {
             let (seed, random) = terrain_seed(seed);
             let shown = voxtrace_flags::Subject::Terrain { seed, size };
@@ -60,14 +68,16 @@ impl<'a> Subject<'a> {
                 shown,
                 path: None,
                 random,
+                frame: 0,
             });
         };
-        let model = voxtrace::VoxModel::load(path)
+        let model = voxtrace::VoxModel::load_frame(path, frame)
             .map_err(|e| format!("cannot load --vox {}: {e}", show_path(path)))?;
         Ok(Subject {
             shown: voxtrace_flags::Subject::Model(Box::new(model)),
             path: Some(path),
             random: false,
+            frame,
         })
     }
 
@@ -91,7 +101,12 @@ impl<'a> Subject<'a> {
                 let path = path.unwrap_or(Path::new(""));
                 let bytes = std::fs::read(path)
                     .map_err(|e| format!("cannot load --vox {}: {e}", show_path(path)))?;
-                Ok(format!("vox fnv1a64={:016x}", fnv1a64(&bytes)))
+                let hash = fnv1a64(&bytes);
+                // A still's text as before animation frames were read.
+                Ok(match self.shown.model().map_or(1, |m| m.frames()) {
+                    1 => format!("vox fnv1a64={hash:016x}"),
+                    _ => format!("vox fnv1a64={hash:016x} frame={}", self.frame),
+                })
             }
         }
     }

@@ -199,3 +199,67 @@ fn the_papers_camera_stays_where_it_starts_in_air() {
         assert!(default == given, "size {size}: not the paper's frame");
     }
 }
+
+/// The image data of the PNG at `path` (its settings text names the file,
+/// which differs between the files compared).
+fn image_data(path: &Path) -> Vec<u8> {
+    let png = std::fs::read(path).unwrap();
+    common::parts::chunks(&png)
+        .into_iter()
+        .filter(|c| &c.kind == b"IDAT")
+        .flat_map(|c| c.data)
+        .collect()
+}
+
+#[test]
+fn an_animation_shows_its_first_frame_and_frame_picks_another() {
+    use common::vox_bytes::{chunk, file, model};
+    // Three frames of one figure (MagicaVoxel's animation files: several
+    // models and no scene graph), each recolored, one voxel moved.
+    let frame = |k: u8| {
+        let mut voxels: Vec<[u8; 4]> = (0..4)
+            .flat_map(|x| (0..6).map(move |z| [x, 0, z, 10 + 20 * k]))
+            .collect();
+        voxels.push([k, 2, 0, 200]);
+        model([4, 3, 6], &voxels)
+    };
+    let dir = common::run::fresh_dir("default_view", "animation");
+    let path = |name: &str| dir.join(name).display().to_string();
+    let pack = chunk(b"PACK", &3u32.to_le_bytes(), &[]);
+    let frames = [vec![pack], frame(0), frame(1), frame(2)].concat();
+    std::fs::write(dir.join("anim.vox"), file(&frames)).unwrap();
+    // A small frame of `vox` (and `extra` flags) into `out`.
+    let render = |vox: &str, extra: &[&str], out: &str| {
+        let (vox, out) = (path(vox), path(out));
+        let mut args = vec!["--vox", &vox, "--width", "48", "--height", "36"];
+        args.extend(extra);
+        args.extend(["--out", &out]);
+        voxtrace(args)
+    };
+    for k in 0..3u8 {
+        let (alone, picked) = (format!("alone{k}.png"), format!("picked{k}.png"));
+        let still = format!("frame{k}.vox");
+        std::fs::write(dir.join(&still), file(&frame(k))).unwrap();
+        let run = render(&still, &[], &alone);
+        assert!(run.status.success(), "{}", stderr(&run));
+        let run = render("anim.vox", &["--frame", &k.to_string()], &picked);
+        assert!(run.status.success(), "{}", stderr(&run));
+        assert!(
+            !stderr(&run).contains("animation frames"),
+            "{}",
+            stderr(&run)
+        );
+        let (alone, picked) = (dir.join(alone), dir.join(picked));
+        assert_eq!(image_data(&picked), image_data(&alone), "frame {k}");
+    }
+    let run = render("anim.vox", &[], "default.png");
+    assert!(run.status.success(), "{}", stderr(&run));
+    let note = "note: the file holds 3 animation frames; this is frame 0 \
+                (--frame N renders frame N, 0 to 2)";
+    assert!(stderr(&run).contains(note), "{}", stderr(&run));
+    let first = image_data(&dir.join("alone0.png"));
+    assert_eq!(image_data(&dir.join("default.png")), first);
+    assert_ne!(first, image_data(&dir.join("alone1.png")));
+    let past = render("anim.vox", &["--frame", "3"], "past.png");
+    common::run::assert_refused(&past, &["3 animation frames (0 to 2), no frame 3"]);
+}

@@ -516,6 +516,18 @@ mod settings_difference {
             "{:?}",
             diff(&vox)
         );
+        let frame = |k| {
+            text(
+                &format!("vox fnv1a64=00000000000000ff frame={k}"),
+                "octree",
+                true,
+                None,
+            )
+        };
+        assert_eq!(
+            settings_difference(&frame(0), &frame(2)).unwrap(),
+            "--frame: 0 against 2"
+        );
     }
 
     #[derive(Debug)]

@@ -16,7 +16,7 @@ use crate::source::vox::index::{ChunkIndex, CHUNK, CHUNK_LOG, CHUNK_VOXELS};
 use crate::source::vox::rcam::Cameras;
 use crate::source::vox::rcam::VoxCamera;
 use crate::source::vox::robj::VoxSettings;
-use crate::source::vox::scene_graph::{placements, Placement, VoxError, MAX_PLACED};
+use crate::source::vox::scene_graph::{frame_count, placements, Placement, VoxError, MAX_PLACED};
 
 pub(crate) mod chunks;
 pub(crate) mod index;
@@ -54,6 +54,8 @@ pub struct VoxModel {
     settings: VoxSettings,
     /// The rCAM cameras, by id, and the malformed rCAM chunks.
     cameras: Cameras,
+    /// The file's animation frames (1 for a still).
+    frames: u32,
     warnings: Vec<String>,
 }
 
@@ -64,18 +66,44 @@ fn in_chunk(pos: IVec3) -> usize {
 }
 
 impl VoxModel {
-    /// Reads and places the `.vox` file at `path`.
+    /// Reads and places the `.vox` file at `path` (its first animation
+    /// frame: [`VoxModel::load_frame`]).
     pub fn load(path: &std::path::Path) -> Result<VoxModel, VoxError> {
-        let bytes = std::fs::read(path).map_err(|e| VoxError::Io(format!("{e}")))?;
-        VoxModel::from_bytes(&bytes)
+        VoxModel::load_frame(path, 0)
     }
 
-    /// Places the `.vox` file in `bytes`. Counts are checked before anything
-    /// is allocated for them: a bad file is an error, never a huge
-    /// allocation or a panic.
+    /// Reads and places animation frame `frame` (from 0) of the `.vox`
+    /// file at `path` ([`VoxModel::from_bytes_frame`]).
+    pub fn load_frame(path: &std::path::Path, frame: u32) -> Result<VoxModel, VoxError> {
+        let bytes = std::fs::read(path).map_err(|e| VoxError::Io(format!("{e}")))?;
+        VoxModel::from_bytes_frame(&bytes, frame)
+    }
+
+    /// Places the `.vox` file in `bytes` (its first animation frame:
+    /// [`VoxModel::from_bytes_frame`]).
     pub fn from_bytes(bytes: &[u8]) -> Result<VoxModel, VoxError> {
+        VoxModel::from_bytes_frame(bytes, 0)
+    }
+
+    /// Places animation frame `frame` (from 0) of the `.vox` file in
+    /// `bytes`: of a file of several models and no scene graph
+    /// (MagicaVoxel's animations), model `frame`; of a scene graph, each
+    /// transform's and shape's keyframe (`_f`) that holds at `frame`. A
+    /// still file has one frame ([`VoxModel::frames`]); a frame past the
+    /// last is an error. Counts are checked before anything is allocated
+    /// for them: a bad file is an error, never a huge allocation or a
+    /// panic.
+    pub fn from_bytes_frame(bytes: &[u8], frame: u32) -> Result<VoxModel, VoxError> {
         let data = dot_vox::load_bytes(bytes).map_err(VoxError::Parse)?;
-        let placed = placements(&data)?;
+        let frames = frame_count(&data);
+        if frame >= frames {
+            return Err(VoxError::Invalid(format!(
+                "it has {frames} animation frame{} (0 to {}), no frame {frame}",
+                if frames == 1 { "" } else { "s" },
+                frames - 1
+            )));
+        }
+        let placed = placements(&data, frame)?;
         let colors: Vec<U8Vec3> = data
             .palette
             .iter()
@@ -140,6 +168,7 @@ impl VoxModel {
             emitters: Vec::new(),
             settings: robj::settings(bytes),
             cameras: Cameras::default(),
+            frames,
             warnings: Vec::new(),
         };
         model.cameras = rcam::cameras(bytes, &mut model.warnings);
@@ -228,6 +257,13 @@ impl VoxModel {
             self.cameras.malformed,
             self.cameras.first_malformed.as_deref(),
         )
+    }
+
+    /// The file's animation frames: several for a file of several models
+    /// and no scene graph, or a scene graph with keyframes; 1 for a still.
+    #[must_use]
+    pub fn frames(&self) -> u32 {
+        self.frames
     }
 
     /// One line per MATL or rCAM value that was not a number (or not UTF-8

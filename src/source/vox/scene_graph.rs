@@ -119,9 +119,51 @@ pub(crate) struct Placement {
 /// (no mirror), so models keep their handedness.
 const Z_UP_TO_Y_UP: IMat3 = IMat3::from_rows(IVec3::X, IVec3::Z, IVec3::NEG_Y);
 
-/// Every model instance of `data`, placed. Files without a scene graph put
-/// each model at the origin.
-pub(crate) fn placements(data: &DotVoxData) -> Result<Vec<Placement>, VoxError> {
+/// The animation frames of `data`: a file without a scene graph holds one
+/// per model (MagicaVoxel's animation files before its scene graph);
+/// one with a scene graph as many as its highest keyframe (`_f`) plus one.
+pub(crate) fn frame_count(data: &DotVoxData) -> u32 {
+    if data.scenes.is_empty() {
+        return u32::try_from(data.models.len()).unwrap_or(u32::MAX).max(1);
+    }
+    let keys = data.scenes.iter().flat_map(|node| match node {
+        SceneNode::Transform { frames, .. } => frames.iter().map(|f| key(&f.attributes)).collect(),
+        SceneNode::Shape { models, .. } => models.iter().map(|m| key(&m.attributes)).collect(),
+        SceneNode::Group { .. } => Vec::new(),
+    });
+    keys.max().unwrap_or(0).saturating_add(1)
+}
+
+/// A keyframe's frame (`_f`; 0 when absent or not a number).
+fn key(attributes: &dot_vox::Dict) -> u32 {
+    attributes
+        .get("_f")
+        .and_then(|f| f.trim().parse().ok())
+        .unwrap_or(0)
+}
+
+/// Of keyframes listed in order, the one `frame` shows: the one with the
+/// greatest key at most `frame` (a keyframe holds until the next), the
+/// first listed of equals, else the first listed.
+fn keyframe_at<T>(
+    keyframes: &[T],
+    attributes: impl Fn(&T) -> &dot_vox::Dict,
+    frame: u32,
+) -> Option<&T> {
+    let mut shown: Option<(u32, &T)> = None;
+    for k in keyframes {
+        let at = key(attributes(k));
+        if at <= frame && shown.is_none_or(|(best, _)| at > best) {
+            shown = Some((at, k));
+        }
+    }
+    shown.map(|(_, k)| k).or(keyframes.first())
+}
+
+/// Every model instance of animation frame `frame` of `data` (below
+/// [`frame_count`]), placed. A file without a scene graph shows its model
+/// `frame` at the origin.
+pub(crate) fn placements(data: &DotVoxData, frame: u32) -> Result<Vec<Placement>, VoxError> {
     for (i, model) in data.models.iter().enumerate() {
         let s = model.size;
         if [s.x, s.y, s.z]
@@ -150,10 +192,16 @@ pub(crate) fn placements(data: &DotVoxData) -> Result<Vec<Placement>, VoxError> 
             rotation: Z_UP_TO_Y_UP,
             translation: IVec3::ZERO,
         };
-        return Ok((0..data.models.len()).map(at_origin).collect());
+        return Ok(data
+            .models
+            .get(frame as usize)
+            .map(|_| at_origin(frame as usize))
+            .into_iter()
+            .collect());
     }
     let mut walker = Walker {
         data,
+        frame,
         visiting: HashSet::new(),
         out: Vec::new(),
         visits: 0,
@@ -169,6 +217,8 @@ pub(crate) fn placements(data: &DotVoxData) -> Result<Vec<Placement>, VoxError> 
 /// The walk over the scene graph, with what it has counted so far.
 struct Walker<'d> {
     data: &'d DotVoxData,
+    /// The animation frame whose keyframes the walk takes.
+    frame: u32,
     /// Nodes on the current path: a node met again on it is a loop.
     visiting: HashSet<u32>,
     out: Vec<Placement>,
@@ -214,7 +264,7 @@ impl Walker<'_> {
                     .get(*layer_id as usize)
                     .is_some_and(|layer| layer.hidden());
                 if !(hidden(attributes) || hidden_layer) {
-                    let (r, t) = match frames.first() {
+                    let (r, t) = match keyframe_at(frames, |f| &f.attributes, self.frame) {
                         Some(frame) => (
                             rotation_of(frame.attributes.get("_r"))?,
                             translation_of(frame.attributes.get("_t"))?,
@@ -240,7 +290,7 @@ impl Walker<'_> {
                 }
             }
             SceneNode::Shape { models, .. } => {
-                for shape in models {
+                if let Some(shape) = keyframe_at(models, |m| &m.attributes, self.frame) {
                     self.place(shape.model_id as usize, rotation, translation)?;
                 }
             }
