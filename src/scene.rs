@@ -294,7 +294,8 @@ pub trait Scene {
     /// lookup, for a path that needs to know what lies across a face (a
     /// path through glass). A storage may begin its lookup from `memory`
     /// and leave there the way to `cell`; the default traces a ray from
-    /// the cell's center over no distance.
+    /// the cell's center over no distance (exact for every cell within
+    /// [`crate::MAX_COORD`]).
     #[inline]
     fn voxel_at<'s>(&'s self, cell: IVec3, memory: &mut WalkMemory<'s>) -> Option<Hit> {
         let center = Ray::new(cell.as_vec3() + 0.5, glam::Vec3::X).ok()?;

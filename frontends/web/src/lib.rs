@@ -215,7 +215,12 @@ fn render_into(state: &mut State, f: &Frame) -> ErrorCode {
     let Some((_, built)) = scene else {
         return ErrorCode::Build;
     };
-    let stage = subject.stage();
+    // The page's views frame every scene around it, the terrain too: no
+    // paper's position to start from (the CLI's default terrain view).
+    let stage = voxtrace_flags::Stage {
+        default_position: None,
+        ..subject.stage()
+    };
     let size = (f.width, f.height);
     let is_model = subject.model().is_some();
     let flags = camera::flags(f.aim, size, is_model, built.scene(), &stage);
