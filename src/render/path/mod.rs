@@ -40,7 +40,7 @@ use crate::render::rays::{around, primary, secondary};
 use crate::render::sampling::{cosine_hemisphere, pixel_key};
 use crate::render::shade::{sky, SKY_HORIZON};
 use crate::render::stats::RayStats;
-use crate::scene::WalkMemory;
+use crate::scene::{Hit, WalkMemory};
 use crate::scene::{Reach, Scene};
 
 use bsdf::{glossy, microfacet};
@@ -144,25 +144,21 @@ pub(crate) struct Path<'s, 'm> {
 }
 
 impl Path<'_, '_> {
-    /// The radiance along one camera ray, which hits nothing before
-    /// `clear`.
+    /// The radiance along one camera ray, whose hit is `hit`.
     fn radiance<'s, S: Scene + ?Sized>(
         &self,
         scene: &'s S,
         camera_ray: &Ray,
-        clear: f32,
-        memory: &mut WalkMemory<'s>,
+        mut hit: Option<Hit>,
+        memory: &WalkMemory<'s>,
         rng: &mut Rng,
         stats: &mut RayStats,
     ) -> Vec3 {
         let setup = self.setup;
         let mut ray = *camera_ray;
-        let mut hit = scene
-            .trace_with(&ray, Reach::after(clear), memory, None)
-            .hit;
         // The path's rays each begin from the hit before them, known to the
         // walk that found it: one memory follows the path (the camera's
-        // stays with the camera's walks, for the next pixel).
+        // stays with the camera's walks, for the next pixels).
         let path_memory = &mut memory.clone();
         *stats += primary(hit.as_ref());
         let first_t = hit.map(|h| h.t);

@@ -46,32 +46,33 @@ impl FrameSetup<'_, '_> {
 impl Kernel for Path<'_, '_> {
     const RESUMES: bool = true;
 
-    /// Each lane's samples in order ([`Path::take_samples`]): all of
-    /// them in one pass, else from the lane's samples so far to the end
-    /// of the round.
+    #[cfg(feature = "packets")]
+    fn in_blocks(&self) -> bool {
+        true
+    }
+
+    /// The lanes' samples in order ([`Path::resume_block`]): all of them
+    /// in one pass, else from each lane's samples so far to the end of
+    /// the round.
     #[inline]
     fn block<'s, S: Scene + ?Sized, const N: usize>(
         &self,
         scene: &'s S,
         block: Block,
         memory: &mut WalkMemory<'s>,
-        mut samples: Option<&mut BlockSamples<'_>>,
-        mut put: impl FnMut(usize, u32),
+        samples: Option<&mut BlockSamples<'_>>,
+        put: impl FnMut(usize, u32),
     ) -> RayStats {
-        let mut stats = RayStats::default();
+        let mut states = [PixelSamples::default(); N];
+        let Some(kept) = samples else {
+            return self.resume_block(scene, block, memory, &mut states, u32::MAX, put);
+        };
         for i in each_lane(block.lanes) {
-            let pixel = block_pixel(block.corner, i);
-            let mut fresh = PixelSamples::default();
-            let (round, state) = match samples.as_deref_mut() {
-                Some(kept) => (kept.round, kept.lane(i)),
-                None => (u32::MAX, &mut fresh),
-            };
-            if let Some((rgba, rays)) =
-                self.resume_pixel(scene, pixel, block.clear, memory, state, round)
-            {
-                put(i, rgba);
-                stats += rays;
-            }
+            states[i] = *kept.lane(i);
+        }
+        let stats = self.resume_block(scene, block, memory, &mut states, kept.round, put);
+        for i in each_lane(block.lanes) {
+            *kept.lane(i) = states[i];
         }
         stats
     }

@@ -207,7 +207,7 @@ pub(crate) trait Kernel: Sync {
 
 /// The set bits of `lanes`, lowest first.
 #[inline]
-fn each_lane(mut lanes: u32) -> impl Iterator<Item = usize> {
+pub(crate) fn each_lane(mut lanes: u32) -> impl Iterator<Item = usize> {
     core::iter::from_fn(move || {
         let lane = NonZeroU32::new(lanes)?.trailing_zeros() as usize;
         lanes &= lanes - 1;
@@ -247,7 +247,7 @@ fn lane_rays<const N: usize>(
 /// shares nothing). Returns the lanes answered together, without a walk
 /// of their own ([`RayStats::packet_rays`] counts them).
 #[inline(always)]
-fn trace_rays<'s, S: Scene + ?Sized, const N: usize>(
+pub(crate) fn trace_rays<'s, S: Scene + ?Sized, const N: usize>(
     scene: &'s S,
     rays: &[Ray; N],
     lanes: u32,
