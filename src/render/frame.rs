@@ -367,11 +367,15 @@ impl Bands<'_> {
                 .enumerate()
                 .map(|(index, states)| in_band(index, Some(states)))
                 .reduce(nothing, sum),
-            None => (0..self.region.height.div_ceil(self.rows) as usize)
-                .into_par_iter()
-                .with_max_len(1)
-                .map(|index| in_band(index, None))
-                .reduce(nothing, sum),
+            None => {
+                let bands = self.region.height.div_ceil(self.rows) as usize;
+                let stride = spread_stride(bands);
+                (0..bands)
+                    .into_par_iter()
+                    .with_max_len(1)
+                    .map(|k| in_band(k * stride % bands, None))
+                    .reduce(nothing, sum)
+            }
         }
     }
 
@@ -380,5 +384,37 @@ impl Bands<'_> {
         if let Some(rows_done) = self.rows_done {
             rows_done(self.rect(index).height);
         }
+    }
+}
+
+/// A step through `bands` bands that visits each once (coprime to it) and
+/// spreads the first ones over the whole region (near the golden ratio of
+/// it): the bands finished early are a fair sample of the frame's cost,
+/// so a progress bar's time left does not run low over the cheap sky.
+#[cfg(feature = "rayon")]
+fn spread_stride(bands: usize) -> usize {
+    let coprime = |s: usize| (2..=s).all(|d| s % d != 0 || bands % d != 0);
+    // (`bands + 1` is coprime: the search ends.)
+    ((bands * 1_000 / 1_618).max(1)..)
+        .find(|&s| coprime(s))
+        .unwrap_or(1)
+}
+
+/// Every band once, the order's first half in every quarter of the region.
+#[cfg(all(test, feature = "rayon"))]
+#[test]
+fn the_band_order_is_a_spread_permutation() {
+    for bands in 1..300 {
+        let stride = spread_stride(bands);
+        let order = |k: usize| k * stride % bands;
+        let mut seen = [false; 300];
+        (0..bands).for_each(|k| seen[order(k)] = true);
+        assert!(seen[..bands].iter().all(|&s| s), "{bands} bands");
+        let mut hit = [false; 4];
+        (0..bands / 2).for_each(|k| hit[4 * order(k) / bands] = true);
+        assert!(
+            bands < 16 || hit == [true; 4],
+            "{bands} bands, stride {stride}"
+        );
     }
 }

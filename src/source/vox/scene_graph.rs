@@ -150,14 +150,10 @@ fn keyframe_at<T>(
     attributes: impl Fn(&T) -> &dot_vox::Dict,
     frame: u32,
 ) -> Option<&T> {
-    let mut shown: Option<(u32, &T)> = None;
-    for k in keyframes {
-        let at = key(attributes(k));
-        if at <= frame && shown.is_none_or(|(best, _)| at > best) {
-            shown = Some((at, k));
-        }
-    }
-    shown.map(|(_, k)| k).or(keyframes.first())
+    // Reversed: `max_by_key` keeps the last of equal keys.
+    let key_of = |k: &&T| key(attributes(k));
+    let shown = keyframes.iter().rev().filter(|k| key_of(k) <= frame);
+    shown.max_by_key(key_of).or(keyframes.first())
 }
 
 /// Every model instance of animation frame `frame` of `data` (below
