@@ -293,8 +293,16 @@ fn notes(
 const GRAINY_BELOW: u16 = 16;
 
 /// A hint when a path-traced frame takes a fixed, low `--spp` and is not
-/// denoised: it will be grainy, and two flags help.
+/// denoised: it will be grainy, and two flags help; or when `--denoise`
+/// is asked of a frame that is not path-traced, which has no noise.
 fn low_samples_hint(options: &RenderOptions, plan: &EffectPlan, denoise: bool) -> Option<String> {
+    if denoise && plan.look != Look::Path {
+        return Some(
+            "--denoise has little to clean here: the frame is not path-traced, so its \
+             pixels carry no sampling noise (it was denoised as asked)"
+                .into(),
+        );
+    }
     // Without --spp a path-traced frame samples adaptively.
     let fixed = options.adaptive.is_none();
     (plan.look == Look::Path && fixed && options.samples < GRAINY_BELOW && !denoise).then(|| {
