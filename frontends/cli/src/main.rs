@@ -127,6 +127,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     let paths = output_paths(out, format, tile.is_some(), &args.out, files)?;
     let mut notes = notes(&options, &plan, &args.given(matches), &settings, format);
     notes.extend(low_samples_hint(&options, &plan, args.denoise));
+    notes.extend(nothing_to_denoise(&plan, args.denoise));
     notes.extend(camera_inside_note(&cameras, &subject, args.camera));
     notes.extend(animation_note(&subject, args.frame));
     let (backend, threads, tile) = (args.backend, args.threads, tile.as_ref());
@@ -292,17 +293,19 @@ fn notes(
 /// Fewer fixed samples than this leave a path-traced frame visibly grainy.
 const GRAINY_BELOW: u16 = 16;
 
+/// A note when `--denoise` is asked of a frame that is not path-traced,
+/// whose pixels have no sampling noise.
+fn nothing_to_denoise(plan: &EffectPlan, denoise: bool) -> Option<String> {
+    (denoise && plan.look != Look::Path).then(|| {
+        "--denoise has little to clean here: the frame is not path-traced, so its \
+         pixels carry no sampling noise (it was denoised as asked)"
+            .into()
+    })
+}
+
 /// A hint when a path-traced frame takes a fixed, low `--spp` and is not
-/// denoised: it will be grainy, and two flags help; or when `--denoise`
-/// is asked of a frame that is not path-traced, which has no noise.
+/// denoised: it will be grainy, and two flags help.
 fn low_samples_hint(options: &RenderOptions, plan: &EffectPlan, denoise: bool) -> Option<String> {
-    if denoise && plan.look != Look::Path {
-        return Some(
-            "--denoise has little to clean here: the frame is not path-traced, so its \
-             pixels carry no sampling noise (it was denoised as asked)"
-                .into(),
-        );
-    }
     // Without --spp a path-traced frame samples adaptively.
     let fixed = options.adaptive.is_none();
     (plan.look == Look::Path && fixed && options.samples < GRAINY_BELOW && !denoise).then(|| {

@@ -398,52 +398,36 @@ fn a_signal_just_after_the_rename_says_the_file_was_written() {
 }
 
 #[test]
-fn an_append_only_folder_is_refused_before_the_build_and_left_clean() {
-    let dir = fresh_dir(SUITE, "append-only");
-    let out_path = dir.join("render.png");
-    std::fs::write(&out_path, OLD).unwrap();
-    if !chattr("+a", &dir) {
-        return;
+fn an_append_only_or_immutable_folder_is_refused_naming_it_and_left_clean() {
+    for (flag, name, words) in [
+        ("a", "append-only", "its folder is append-only (chattr +a)"),
+        (
+            "i",
+            "immutable-folder",
+            "its folder is immutable (chattr +i)",
+        ),
+    ] {
+        let dir = fresh_dir(SUITE, name);
+        let out_path = dir.join("render.png");
+        std::fs::write(&out_path, OLD).unwrap();
+        if !chattr(&format!("+{flag}"), &dir) {
+            continue;
+        }
+        let out = voxtrace(
+            STILL
+                .map(os)
+                .into_iter()
+                .chain([os("--out"), out_path.as_os_str()]),
+        );
+        let left = entries(&dir);
+        chattr(&format!("-{flag}"), &dir);
+        let text = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{text}");
+        assert!(is_one_error_line(&text), "{text}");
+        assert!(text.contains(words), "{text}");
+        assert_eq!(left, ["render.png"]);
+        assert_eq!(std::fs::read(&out_path).unwrap(), OLD);
     }
-    let out = voxtrace(
-        STILL
-            .map(os)
-            .into_iter()
-            .chain([os("--out"), out_path.as_os_str()]),
-    );
-    let left = entries(&dir);
-    chattr("-a", &dir);
-    let text = stderr(&out);
-    assert_eq!(out.status.code(), Some(2), "{text}");
-    assert!(is_one_error_line(&text), "{text}");
-    assert!(text.contains("append-only (chattr +a)"), "{text}");
-    assert_eq!(left, ["render.png"]);
-    assert_eq!(std::fs::read(&out_path).unwrap(), OLD);
-}
-
-#[test]
-fn an_immutable_folder_is_refused_naming_its_attribute() {
-    let dir = fresh_dir(SUITE, "immutable-folder");
-    let out_path = dir.join("render.png");
-    std::fs::write(&out_path, OLD).unwrap();
-    if !chattr("+i", &dir) {
-        return;
-    }
-    let out = voxtrace(
-        STILL
-            .map(os)
-            .into_iter()
-            .chain([os("--out"), out_path.as_os_str()]),
-    );
-    chattr("-i", &dir);
-    let text = stderr(&out);
-    assert_eq!(out.status.code(), Some(2), "{text}");
-    assert!(is_one_error_line(&text), "{text}");
-    assert!(
-        text.contains("its folder is immutable (chattr +i)"),
-        "{text}"
-    );
-    assert_eq!(std::fs::read(&out_path).unwrap(), OLD);
 }
 
 #[test]
