@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use clap::Parser;
 use voxtrace::glam::Vec3;
 use voxtrace::Rect;
-use voxtrace_cli::{parse_frame_range, Backend, FrameRange};
+use voxtrace_cli::{parse_frame, parse_frame_range, Backend, FrameArg, FrameRange};
 
 mod farm;
 mod plain;
@@ -47,8 +47,10 @@ pub struct Args {
     /// Render animation frame N (from 0) of the --vox file: its model N
     /// when it holds several and no scene graph (MagicaVoxel's animations),
     /// else the scene graph's keyframes at N [default: 0, the first].
-    #[arg(long, value_name = "N", requires = "vox")]
-    pub frame: Option<u32>,
+    /// `all` renders every frame, each to --out with its run of # made
+    /// the frame's number (walk_####.png -> walk_0000.png, ...).
+    #[arg(long, value_name = "N|all", requires = "vox", value_parser = parse_frame)]
+    pub frame: Option<FrameArg>,
 
     /// Scene extent N: the volume is [-N, N)^3.
     #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(i32).range(1..=voxtrace::MAX_COORD as i64))]

@@ -1,6 +1,8 @@
 //! Numbered frames: `--frames N`, `--frame-range A-B` and the `#` run in an
 //! output path that becomes the frame number (`spin_####.png` ->
-//! `spin_0001.png`), as Blender names its frames. Frames count from 1.
+//! `spin_0001.png`), as Blender names its frames. A turntable's frames
+//! count from 1; a file's animation frames (`--frame N|all`) from 0, as
+//! `--frame` numbers them.
 
 use std::ffi::{OsStr, OsString};
 use std::ops::RangeInclusive;
@@ -48,6 +50,26 @@ impl FrameRange {
         }
         Ok(())
     }
+}
+
+/// `--frame`: one animation frame of the file, or all of them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrameArg {
+    /// Frame N, from 0.
+    One(u32),
+    /// Every frame, each to its own file.
+    All,
+}
+
+/// Parses `--frame`: a whole number from 0, or `all`.
+pub fn parse_frame(s: &str) -> Result<FrameArg, String> {
+    if s.trim().eq_ignore_ascii_case("all") {
+        return Ok(FrameArg::All);
+    }
+    s.trim()
+        .parse::<u32>()
+        .map(FrameArg::One)
+        .map_err(|_| format!("'{s}' is not an animation frame: a whole number from 0, or all"))
 }
 
 /// Parses `A-B` (or a single frame `A`), 1-based, `A <= B`.

@@ -28,7 +28,7 @@ pub mod tiles;
 mod units;
 
 pub use export::{export_vox, terrain_box};
-pub use frames::{frame_path, parse_frame_range, turntable, FrameRange};
+pub use frames::{frame_path, parse_frame, parse_frame_range, turntable, FrameArg, FrameRange};
 pub use pipeline::{mean_radiance, on_threads, Backend, BuiltScene, Rendered, ROUND_STATE_BYTES};
 pub use units::human_bytes;
 /// The framing is the shared crate's (the web page frames the same way);

@@ -26,7 +26,7 @@ use voxtrace::{Camera, CameraSettings, EffectPlan, Look, Rect, RenderOptions, Vo
 use voxtrace_cli::atomic::{exit_with_error, remove_on_signal, AtomicFile};
 use voxtrace_cli::errors::{self, escape_controls, show_path};
 use voxtrace_cli::say;
-use voxtrace_cli::{export_vox, frame_path, terrain_box, turntable, FrameRange};
+use voxtrace_cli::{export_vox, frame_path, terrain_box, turntable, FrameArg, FrameRange};
 use voxtrace_flags::Effects;
 
 use args::{Args, Command, GivenFlags, TileArgs};
@@ -93,6 +93,49 @@ fn work() -> ExitCode {
 /// Apart from `args` itself, only this file reads [`Args`]: every stage
 /// takes plain values.
 fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
+    match args.frame {
+        Some(FrameArg::All) => every_frame(args, matches),
+        Some(FrameArg::One(frame)) => render_one(args, matches, Some(frame), &args.out),
+        None => render_one(args, matches, None, &args.out),
+    }
+}
+
+/// `--frame all`: every animation frame of the file, each rendered as
+/// `--frame K` renders it alone, to `--out` with its run of `#` made `K`;
+/// every file name is checked before the first frame is rendered.
+///
+/// # Errors
+/// One line: a flag that cannot go with it, an `--out` without `#`, or
+/// the first frame that fails.
+fn every_frame(args: &Args, matches: &ArgMatches) -> Result<(), String> {
+    let farmed = args.farm.tiles.is_some() || args.farm.tasks.is_some();
+    if args.frames.is_some() || farmed {
+        return Err("--frame all renders the file's own animation, one whole frame a file: \
+                    it cannot also take --frames, --tiles or --tasks"
+            .into());
+    }
+    if output::is_stdout(&args.out) {
+        return Err("--frame all writes one file per frame: --out - cannot hold them".into());
+    }
+    let file = Subject::load(args.vox.as_deref(), 0, args.seed, args.size)?;
+    let count = file.shown.model().map_or(1, |model| model.frames());
+    let paths: Vec<PathBuf> = (0..count)
+        .map(|k| frame_path(&args.out, k))
+        .collect::<Result<_, _>>()?;
+    for (frame, path) in (0..count).zip(&paths) {
+        render_one(args, matches, Some(frame), path)?;
+    }
+    Ok(())
+}
+
+/// One frame of the file (`frame`, `None` when `--frame` was not given)
+/// or the terrain, to `out`.
+fn render_one(
+    args: &Args,
+    matches: &ArgMatches,
+    frame: Option<u32>,
+    out: &Path,
+) -> Result<(), String> {
     let started = std::time::Instant::now();
     let random_terrain = args.vox.is_none() && args.seed.is_none();
     farm::check_flags(&args.farm, random_terrain, args.frames)?;
@@ -104,8 +147,7 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
                 .into(),
         );
     }
-    let frame = args.frame.unwrap_or(0);
-    let subject = Subject::load(args.vox.as_deref(), frame, args.seed, args.size)?;
+    let subject = Subject::load(args.vox.as_deref(), frame.unwrap_or(0), args.seed, args.size)?;
     let explicit = Args::camera_given(matches);
     let flags = view::measured_default(args.camera_flags(), explicit, &subject, args.max_memory);
     let file = args.camera;
@@ -119,17 +161,18 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     let first = &cameras[0].camera;
     let (options, plan) = resolve_effects(&args.effects(), &subject, &settings);
     let scene = || subject.tile_text();
-    let tile = farm::select(&args.farm, first, &options, &scene, args.backend, &args.out)?;
+    let tile = farm::select(&args.farm, first, &options, &scene, args.backend, out)?;
     let region = region(tile.as_ref(), args.region, first)?;
-    let out = tile.as_ref().map_or(&args.out, |tile| &tile.out);
+    let pattern = out;
+    let out = tile.as_ref().map_or(out, |tile| &tile.out);
     let format = output::format_of(out, args.format)?;
     let files = args.frames.map(|_| range);
-    let paths = output_paths(out, format, tile.is_some(), &args.out, files)?;
+    let paths = output_paths(out, format, tile.is_some(), pattern, files)?;
     let mut notes = notes(&options, &plan, &args.given(matches), &settings, format);
     notes.extend(low_samples_hint(&options, &plan, args.denoise));
     notes.extend(nothing_to_denoise(&plan, args.denoise));
     notes.extend(camera_inside_note(&cameras, &subject, args.camera));
-    notes.extend(animation_note(&subject, args.frame));
+    notes.extend(animation_note(&subject, frame));
     let (backend, threads, tile) = (args.backend, args.threads, tile.as_ref());
     let job = Job {
         backend,
@@ -317,22 +360,22 @@ fn low_samples_hint(options: &RenderOptions, plan: &EffectPlan, denoise: bool) -
     })
 }
 
-/// A note when a frame's camera starts inside a solid voxel (its rays see
-/// only that voxel), saying what moves it: `--position`, or for a file's
-/// camera (`file_camera`, which refuses `--position`) another camera or
-/// the default view.
 /// For a file of several animation frames rendered without `--frame`:
 /// which frame this is, and how to render another.
 fn animation_note(subject: &Subject, frame: Option<u32>) -> Option<String> {
     let frames = subject.shown.model()?.frames();
     (frames > 1 && frame.is_none()).then(|| {
         format!(
-            "the file holds {frames} animation frames; this is frame 0 (--frame N renders frame N, 0 to {})",
+            "the file holds {frames} animation frames; this is frame 0 (--frame N renders frame N, 0 to {}; --frame all renders each to its own file)",
             frames - 1
         )
     })
 }
 
+/// A note when a frame's camera starts inside a solid voxel (its rays see
+/// only that voxel), saying what moves it: `--position`, or for a file's
+/// camera (`file_camera`, which refuses `--position`) another camera or
+/// the default view.
 fn camera_inside_note(
     cameras: &[Frame],
     subject: &Subject,

@@ -255,11 +255,28 @@ fn an_animation_shows_its_first_frame_and_frame_picks_another() {
     let run = render("anim.vox", &[], "default.png");
     assert!(run.status.success(), "{}", stderr(&run));
     let note = "note: the file holds 3 animation frames; this is frame 0 \
-                (--frame N renders frame N, 0 to 2)";
+                (--frame N renders frame N, 0 to 2; --frame all renders each to its own file)";
     assert!(stderr(&run).contains(note), "{}", stderr(&run));
     let first = image_data(&dir.join("alone0.png"));
     assert_eq!(image_data(&dir.join("default.png")), first);
     assert_ne!(first, image_data(&dir.join("alone1.png")));
     let past = render("anim.vox", &["--frame", "3"], "past.png");
     common::run::assert_refused(&past, &["3 animation frames (0 to 2), no frame 3"]);
+    // The whole sequence: one file a frame, named by its number from 0,
+    // each the bytes of that frame alone; nothing past the last.
+    let run = render("anim.vox", &["--frame", "all"], "walk_##.png");
+    assert!(run.status.success(), "{}", stderr(&run));
+    for k in 0..3 {
+        let numbered = dir.join(format!("walk_{k:02}.png"));
+        let alone = image_data(&dir.join(format!("alone{k}.png")));
+        assert_eq!(image_data(&numbered), alone, "frame {k} of the sequence");
+    }
+    assert!(!dir.join("walk_03.png").exists());
+    let unnumbered = render("anim.vox", &["--frame", "all"], "walk.png");
+    common::run::assert_refused(&unnumbered, &["needs a run of #"]);
+    assert!(!dir.join("walk.png").exists());
+    let turning = render("anim.vox", &["--frame", "all", "--frames", "2"], "t_#.png");
+    common::run::assert_refused(&turning, &["cannot also take --frames"]);
+    let bad = render("anim.vox", &["--frame", "some"], "bad.png");
+    common::run::assert_refused(&bad, &["'some' is not an animation frame"]);
 }
