@@ -110,9 +110,11 @@ fn run(args: &Args, matches: &ArgMatches) -> Result<(), String> {
 fn every_frame(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     let farmed = args.farm.tiles.is_some() || args.farm.tasks.is_some();
     if args.frames.is_some() || farmed {
-        return Err("--frame all renders the file's own animation, one whole frame a file: \
+        return Err(
+            "--frame all renders the file's own animation, one whole frame a file: \
                     it cannot also take --frames, --tiles or --tasks"
-            .into());
+                .into(),
+        );
     }
     if output::is_stdout(&args.out) {
         return Err("--frame all writes one file per frame: --out - cannot hold them".into());
@@ -147,7 +149,12 @@ fn render_one(
                 .into(),
         );
     }
-    let subject = Subject::load(args.vox.as_deref(), frame.unwrap_or(0), args.seed, args.size)?;
+    let subject = Subject::load(
+        args.vox.as_deref(),
+        frame.unwrap_or(0),
+        args.seed,
+        args.size,
+    )?;
     let explicit = Args::camera_given(matches);
     let flags = view::measured_default(args.camera_flags(), explicit, &subject, args.max_memory);
     let file = args.camera;
@@ -295,8 +302,7 @@ fn resolve_effects(
     view: &CameraSettings,
 ) -> (RenderOptions, EffectPlan) {
     let model = subject.shown.model();
-    let distance = (view.lookfrom - view.lookat).length();
-    let options = voxtrace_flags::render_options(effects, subject.shown.bounds(), model, distance);
+    let options = voxtrace_flags::render_options(effects, subject.shown.bounds(), model, view);
     let plan = EffectPlan::new(&options, subject.shown.materials());
     (options, plan)
 }

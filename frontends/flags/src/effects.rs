@@ -3,8 +3,8 @@
 
 use voxtrace::glam::Vec3;
 use voxtrace::{
-    Background, Bounces, EffectPlan, Fog, IAabb, Lighting, Look, Occlusion, RenderOptions,
-    VoxModel, DEFAULT_SUN,
+    Background, Bounces, CameraSettings, EffectPlan, Fog, IAabb, Lighting, Look, Occlusion,
+    RenderOptions, VoxModel, DEFAULT_SUN,
 };
 
 use crate::quality::{self, Sampling};
@@ -16,8 +16,9 @@ pub struct Effects {
     pub flat: bool,
     /// `--debug`.
     pub debug: bool,
-    /// `--sun`: `None` for the `.vox` file's sun or [`DEFAULT_SUN`],
-    /// `Some(None)` for a scene without light (`--sun none`).
+    /// `--sun`: `None` for the `.vox` file's sun, else a model's
+    /// [`shoulder_sun`] or the terrain's [`DEFAULT_SUN`]; `Some(None)` for
+    /// a scene without light (`--sun none`).
     pub sun: Option<Option<Vec3>>,
     /// `--shadows`.
     pub shadows: bool,
@@ -80,26 +81,55 @@ fn lighting(effects: &Effects, model: Option<&VoxModel>) -> Lighting {
     light
 }
 
+/// The sun of a model whose file has none, seen from `view`: over the
+/// viewer's left shoulder, 30 degrees to the side of the way back from
+/// what the camera looks at and 45 degrees above the horizon, so the
+/// faces the camera sees are the lit ones (a fixed sun left the front and
+/// one side of most models in shade). A camera looking straight up or
+/// down has no "back": it takes [`DEFAULT_SUN`].
+#[must_use]
+pub fn shoulder_sun(view: &CameraSettings) -> Vec3 {
+    let back = view.lookfrom - view.lookat;
+    let Some(back) = Vec3::new(back.x, 0.0, back.z).try_normalize() else {
+        return DEFAULT_SUN;
+    };
+    // Left of a camera looking along -back, on the ground plane.
+    let left = Vec3::Y.cross(back);
+    let (side, above) = (30f32.to_radians(), 45f32.to_radians());
+    let level = back * side.cos() + left * side.sin();
+    level * above.cos() + Vec3::Y * above.sin()
+}
+
 /// The options `effects` ask for on the scene `bounds`, lit as `model`
-/// says when there is one. Fog thickens over the terrain's largest side
-/// (3 x `--size`); on a model, framed from afar, it is scaled to the view
-/// `view_distance` (the camera's distance to what it looks at): all fog at
-/// twice the distance to the model's far side, so the model shows its
-/// depth instead of the fog's color. Samples as [`quality::apply`] says
-/// for the frame's look: adaptive in path-traced frames unless `--spp`.
+/// says when there is one, seen from `view` (the first frame's camera).
+/// A model without a sun of its own is lit from over the camera's
+/// shoulder ([`shoulder_sun`]), the terrain by the paper's sun. Fog
+/// thickens over the terrain's largest side (3 x `--size`); on a model,
+/// framed from afar, it is scaled to the view (the camera's distance to
+/// what it looks at): all fog at twice the distance to the model's far
+/// side, so the model shows its depth instead of the fog's color. Samples
+/// as [`quality::apply`] says for the frame's look: adaptive in
+/// path-traced frames unless `--spp`.
 #[must_use]
 pub fn render_options(
     effects: &Effects,
     bounds: IAabb,
     model: Option<&VoxModel>,
-    view_distance: f32,
+    view: &CameraSettings,
 ) -> RenderOptions {
     let side = bounds.size().max_element() as f32;
-    let file_sun = model.and_then(|m| m.settings().sun).map(|s| s.direction);
+    let view_distance = (view.lookfrom - view.lookat).length();
+    let default_sun = match model {
+        Some(model) => model
+            .settings()
+            .sun
+            .map_or_else(|| shoulder_sun(view), |s| s.direction),
+        None => DEFAULT_SUN,
+    };
     let mut options = RenderOptions {
         flat: effects.flat,
         debug: effects.debug,
-        sun: effects.sun.unwrap_or(Some(file_sun.unwrap_or(DEFAULT_SUN))),
+        sun: effects.sun.unwrap_or(Some(default_sun)),
         shadows: effects.shadows,
         occlusion: effects.occlusion,
         samples: 1,
@@ -124,4 +154,51 @@ pub fn render_options(
         &mut options,
     );
     options
+}
+
+#[cfg(test)]
+mod tests {
+    use voxtrace::glam::Vec3;
+    use voxtrace::{CameraSettings, DEFAULT_SUN};
+
+    use super::shoulder_sun;
+
+    /// From every side and height a camera looks at a model from, the
+    /// sun is a unit vector 45 degrees above the horizon, from behind the
+    /// camera (so every face the camera sees that faces it squarely is
+    /// lit) and 30 degrees to its left; looking straight down or up, the
+    /// paper's sun.
+    #[test]
+    fn the_sun_comes_over_the_cameras_left_shoulder() {
+        for yaw in (0..360).step_by(15) {
+            for pitch in [-60.0f32, -10.0, 0.0, 20.0, 45.0, 80.0] {
+                let (yaw_r, pitch_r) = ((yaw as f32).to_radians(), pitch.to_radians());
+                let back = Vec3::new(yaw_r.sin(), 0.0, yaw_r.cos());
+                let offset = back * pitch_r.cos() * 50.0 + Vec3::Y * pitch_r.sin() * 50.0;
+                let lookat = Vec3::new(3.0, -2.0, 7.5);
+                let view = CameraSettings {
+                    lookfrom: lookat + offset,
+                    lookat,
+                    ..CameraSettings::default()
+                };
+                let sun = shoulder_sun(&view);
+                let context = format!("yaw {yaw} pitch {pitch}: {sun}");
+                assert!((sun.length() - 1.0).abs() < 1e-5, "{context}");
+                assert!((sun.y - 45f32.to_radians().sin()).abs() < 1e-5, "{context}");
+                let level = Vec3::new(sun.x, 0.0, sun.z).normalize();
+                let side = level.dot(back).clamp(-1.0, 1.0).acos().to_degrees();
+                assert!((side - 30.0).abs() < 0.01, "{context}: {side} degrees");
+                // Left of a camera looking along -back.
+                assert!(Vec3::Y.cross(back).dot(level) > 0.0, "{context}");
+            }
+        }
+        for down in [Vec3::Y, -Vec3::Y] {
+            let view = CameraSettings {
+                lookfrom: down * 40.0,
+                lookat: Vec3::ZERO,
+                ..CameraSettings::default()
+            };
+            assert_eq!(shoulder_sun(&view), DEFAULT_SUN);
+        }
+    }
 }

@@ -246,8 +246,7 @@ fn render_into(state: &mut State, f: &Frame) -> ErrorCode {
     }
     frame.resize(pixels, 0);
     let model = subject.model();
-    let distance = (settings.lookfrom - settings.lookat).length();
-    let options = options::render_options(f.effects, f.ao_rays, subject.bounds(), model, distance);
+    let options = options::render_options(f.effects, f.ao_rays, subject.bounds(), model, &settings);
     let draw = Draw {
         camera: &camera,
         options: &options,

@@ -5,7 +5,7 @@
 //! same flags. The end-to-end test (`test/e2e.mjs`) compares the two byte
 //! for byte.
 
-use voxtrace::{IAabb, Occlusion, RenderOptions, VoxModel};
+use voxtrace::{CameraSettings, IAabb, Occlusion, RenderOptions, VoxModel};
 use voxtrace_flags::Effects;
 
 /// `vt_render`'s `effects` bits.
@@ -15,14 +15,14 @@ pub const FOG: u32 = 2;
 
 /// The options for the toggles in `effects` ([`SHADOWS`], [`FOG`]) and
 /// `ao_rays` ambient-occlusion rays (0: off), over the scene `bounds`
-/// seen from `view_distance` away (fog is scaled as the CLI scales it),
-/// lit as `model` says when there is one.
+/// seen from `view` (fog is scaled and a model's sun placed as the CLI
+/// does), lit as `model` says when there is one.
 pub fn render_options(
     effects: u32,
     ao_rays: u16,
     bounds: IAabb,
     model: Option<&VoxModel>,
-    view_distance: f32,
+    view: &CameraSettings,
 ) -> RenderOptions {
     let effects = Effects {
         shadows: effects & SHADOWS != 0,
@@ -33,5 +33,5 @@ pub fn render_options(
         fog: effects & FOG != 0,
         ..Effects::default()
     };
-    voxtrace_flags::render_options(&effects, bounds, model, view_distance)
+    voxtrace_flags::render_options(&effects, bounds, model, view)
 }

@@ -139,10 +139,9 @@ fn every_view_zoom_and_effect_of_the_sample_is_the_library_render_of_its_camera(
                 let pixels = frame(1, view, abc, zoom, effects, ao);
                 let flags = message();
                 let seen_from = parse_camera(&flags);
-                let distance = (seen_from.lookfrom - seen_from.lookat).length();
                 let bounds = model.bounds();
                 let options =
-                    options::render_options(effects, ao as u16, bounds, Some(&model), distance);
+                    options::render_options(effects, ao as u16, bounds, Some(&model), &seen_from);
                 assert!(pixels == library(&scene, &flags, &options), "{flags}");
                 assert!(
                     frame(0, view, abc, zoom, effects, ao) == pixels,
@@ -200,7 +199,7 @@ fn a_model_opens_on_the_clis_measured_default_view_and_a_drag_starts_there() {
     let pixels = frame(1, 9, [0.0; 3], 1.0, 0, 0);
     let scene = WithMaterials::new(&octree, model.materials(), model.emitters());
     let mut expected = vec![0; (W * H) as usize];
-    let options = options::render_options(0, 0, model.bounds(), Some(&model), 1.0);
+    let options = options::render_options(0, 0, model.bounds(), Some(&model), &want);
     render(
         &scene,
         &Camera::new(want).unwrap(),
