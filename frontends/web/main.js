@@ -77,7 +77,7 @@ function draw() {
   ctx.putImageData(new ImageData(bytes.slice(), canvas.width, canvas.height), 0, 0);
   status.textContent = `${ms.toFixed(1)} ms (build included when the scene changed)`;
   const scene = model
-    ? ["--vox", quote(model)]
+    ? ["--vox", quote(model), "--quality", "draft"]
     : ["--seed", inputs.seed.value, "--size", inputs.size.value];
   $("command").textContent = ["voxtrace", ...scene,
     "--backend", inputs.backend.value === "0" ? "dense" : "octree",

@@ -215,12 +215,13 @@ pub struct Args {
     #[arg(long, value_name = "SECONDS", value_parser = parse_seconds, allow_hyphen_values = true)]
     pub time_limit: Option<std::time::Duration>,
 
-    /// Effects and samples in one word: preview is the default look;
-    /// final samples a path-traced scene adaptively to a lower noise
-    /// threshold, and renders other scenes with --shadows --ao 16 --spp 16.
-    /// Flags given explicitly win.
-    #[arg(long, value_enum, default_value_t = QualityArg::Preview)]
-    pub quality: QualityArg,
+    /// Effects and samples in one word. draft (alias preview): one sample,
+    /// no effects, the terrain's default; standard: --shadows --ao 8
+    /// --spp 4, a --vox model's default; final: --shadows --ao 16 --spp
+    /// 16. A path-traced scene keeps its adaptive sampling, to a lower
+    /// noise threshold under final. Flags given explicitly win.
+    #[arg(long, value_enum)]
+    pub quality: Option<QualityArg>,
 
     /// Distance fog, all fog at 3 x --size voxels from the camera (with
     /// --vox, at twice the distance to the model's far side).

@@ -82,7 +82,7 @@ pub(crate) fn ignored_flags(
     // (With --ao, a frame that ignores occlusion is noted for --ao.)
     if given.ao_distance && !given.ao && options.occlusion.is_none() {
         notes.push(
-            "--ao-distance has no effect without --ao (or --quality final on a face-shaded scene)"
+            "--ao-distance has no effect without --ao (or --quality standard or final on a face-shaded scene)"
                 .to_string(),
         );
     }

@@ -150,6 +150,7 @@ pub fn render_options(
     quality::apply(
         &effects.sampling,
         path_traced,
+        model.is_some(),
         effects.ao_distance,
         &mut options,
     );

@@ -1,22 +1,49 @@
 //! `--quality` and the sampling flags: how many samples a frame takes,
 //! uniform (`--spp`) or adaptive (`--noise-threshold`, the default of
-//! path-traced scenes), and the effects `--quality final` adds.
+//! path-traced scenes), and the effects each quality adds to a
+//! face-shaded scene.
 
 use voxtrace::{Adaptive, Occlusion, RenderOptions};
 
 /// `--quality`: effects and samples in one word, for the scene at hand.
 /// Explicit flags win over what it sets.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Quality {
-    /// Today's default look, fast: one sample per face-shaded pixel,
-    /// path-traced pixels sampled adaptively to [`Adaptive::DEFAULT`].
-    #[default]
-    Preview,
+    /// Fast: one sample per face-shaded pixel and no effects (the
+    /// editor's flat preview, the terrain's default look), path-traced
+    /// pixels sampled adaptively to [`Adaptive::DEFAULT`].
+    Draft,
+    /// A model's default look, a render in about a second: face-shaded
+    /// scenes with shadows, [`STANDARD_AO_RAYS`] occlusion rays and
+    /// [`STANDARD_SPP`] samples per pixel; path-traced ones as `Draft`.
+    Standard,
     /// A picture to keep: path-traced scenes sampled adaptively to
     /// [`Adaptive::FINAL`]; other scenes with shadows, [`FINAL_AO_RAYS`]
     /// occlusion rays and [`FINAL_SPP`] samples per pixel.
     Final,
 }
+
+impl Quality {
+    /// The quality of a frame without `--quality`: [`Quality::Standard`]
+    /// for a model (what MagicaVoxel's render shows: shadows, soft
+    /// occlusion, smooth edges), [`Quality::Draft`] for the terrain (the
+    /// paper's look).
+    #[must_use]
+    pub fn default_for(model: bool) -> Quality {
+        if model {
+            Quality::Standard
+        } else {
+            Quality::Draft
+        }
+    }
+}
+
+/// Occlusion rays of `--quality standard` on a face-shaded scene (`--ao 8`).
+pub const STANDARD_AO_RAYS: u16 = 8;
+
+/// Samples per pixel of `--quality standard` on a face-shaded scene
+/// (`--spp 4`).
+pub const STANDARD_SPP: u16 = 4;
 
 /// Occlusion rays of `--quality final` on a face-shaded scene (`--ao 16`).
 pub const FINAL_AO_RAYS: u16 = 16;
@@ -35,32 +62,33 @@ pub struct Sampling {
     pub noise_threshold: Option<f32>,
     /// `--max-spp`: adaptive sampling to at most this many samples.
     pub max_spp: Option<u16>,
-    /// `--quality`.
-    pub quality: Quality,
+    /// `--quality`; `None` when not given ([`Quality::default_for`]).
+    pub quality: Option<Quality>,
 }
 
-/// Sets the samples of `options` (and, for `--quality final` on a
-/// face-shaded scene, its effects) as `sampling` asks, for a frame that is
-/// `path_traced` or not. `--spp N` is exactly N uniform samples; without
-/// it a path-traced frame samples adaptively, to `--noise-threshold` when
-/// given and to at most `--max-spp` samples (its first round no larger),
-/// and a face-shaded one takes 1 sample (16 under `final`, which
-/// also turns shadows on and occlusion on, reaching `ao_distance`
-/// (`--ao-distance`), unless `--ao N` gave its own); flat and debug looks
-/// get no effects.
+/// Sets the samples of `options` (and, on a face-shaded scene, the
+/// effects of its quality) as `sampling` asks, for a frame that is
+/// `path_traced` or not, of a `model` or the terrain. `--spp N` is
+/// exactly N uniform samples; without it a path-traced frame samples
+/// adaptively, to `--noise-threshold` when given and to at most
+/// `--max-spp` samples (its first round no larger), and a face-shaded one
+/// takes its quality's samples, and shadows and occlusion reaching
+/// `ao_distance` (`--ao-distance`) under `standard` and `final` (unless
+/// `--ao N` gave its own); flat and debug looks get no effects.
 pub fn apply(
     sampling: &Sampling,
     path_traced: bool,
+    model: bool,
     ao_distance: f32,
     options: &mut RenderOptions,
 ) {
-    let final_quality = sampling.quality == Quality::Final;
+    let quality = sampling.quality.unwrap_or(Quality::default_for(model));
     if path_traced {
         options.samples = sampling.spp.unwrap_or(1);
         options.adaptive = match (sampling.spp, sampling.noise_threshold) {
             (Some(_), _) => None,
             (None, threshold) => {
-                let base = if final_quality {
+                let base = if quality == Quality::Final {
                     Adaptive::FINAL
                 } else {
                     Adaptive::DEFAULT
@@ -77,14 +105,20 @@ pub fn apply(
     }
     options.adaptive = None;
     let shaded = !(options.flat || options.debug);
-    if final_quality && shaded {
-        options.shadows = true;
-        options.occlusion = options.occlusion.or(Some(Occlusion {
-            rays: FINAL_AO_RAYS,
-            distance: ao_distance,
-        }));
-        options.samples = sampling.spp.unwrap_or(FINAL_SPP);
-    } else {
-        options.samples = sampling.spp.unwrap_or(1);
+    let effects = match quality {
+        Quality::Draft => None,
+        Quality::Standard => Some((STANDARD_AO_RAYS, STANDARD_SPP)),
+        Quality::Final => Some((FINAL_AO_RAYS, FINAL_SPP)),
+    };
+    match effects.filter(|_| shaded) {
+        Some((rays, spp)) => {
+            options.shadows = true;
+            options.occlusion = options.occlusion.or(Some(Occlusion {
+                rays,
+                distance: ao_distance,
+            }));
+            options.samples = sampling.spp.unwrap_or(spp);
+        }
+        None => options.samples = sampling.spp.unwrap_or(1),
     }
 }

@@ -6,7 +6,7 @@
 //! for byte.
 
 use voxtrace::{CameraSettings, IAabb, Occlusion, RenderOptions, VoxModel};
-use voxtrace_flags::Effects;
+use voxtrace_flags::{Effects, Quality, Sampling};
 
 /// `vt_render`'s `effects` bits.
 pub const SHADOWS: u32 = 1;
@@ -31,6 +31,12 @@ pub fn render_options(
             distance: Occlusion::DEFAULT_DISTANCE,
         }),
         fog: effects & FOG != 0,
+        // The page is a quick preview, one sample a pixel even for a
+        // model (the command it prints says `--quality draft`).
+        sampling: Sampling {
+            quality: Some(Quality::Draft),
+            ..Sampling::default()
+        },
         ..Effects::default()
     };
     voxtrace_flags::render_options(&effects, bounds, model, view)

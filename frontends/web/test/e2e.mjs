@@ -120,7 +120,9 @@ try {
 
   // A .vox model through the file picker opens on the CLI's default view
   // (no camera flag: the measured side that shows the most of it).
-  const model = ["--vox", sample];
+  // The page shows a model as a quick draft (the CLI's default for one
+  // is a render with shadows and occlusion).
+  const model = ["--vox", sample, "--quality", "draft"];
   await page.goto(`http://127.0.0.1:${port}/?w=${W}&h=${H}`);
   await page.waitForFunction(() => document.body.dataset.rendered === "1");
   await after(() => page.setInputFiles("#file", sample));
@@ -134,7 +136,7 @@ try {
   if (others.length === 0) console.log(`skipped the shared models: ${shared} is absent`);
   for (const file of others) {
     await after(() => page.setInputFiles("#file", file));
-    await compare(`${path.basename(file)} from the file picker`, ["--vox", file]);
+    await compare(`${path.basename(file)} from the file picker`, ["--vox", file, "--quality", "draft"]);
   }
   if (others.length > 0) {
     await after(() => page.setInputFiles("#file", sample));
@@ -157,14 +159,14 @@ try {
   // The iso and top views, framed as the CLI frames --view.
   for (const view of ["iso", "top"]) {
     await after(() => page.selectOption("#view", view));
-    await compare(`the ${view} view`, ["--vox", sample, "--view", view]);
+    await compare(`the ${view} view`, [...model, "--view", view]);
   }
 
   // Each effect alone, on and off again, still from the top: there the
   // model's sun is the paper's, whose shadows show (from over the camera's
   // shoulder, as the default view lights it, the height field hides its
   // own shadows).
-  const top = ["--vox", sample, "--view", "top"];
+  const top = [...model, "--view", "top"];
   for (const [id, flags] of [["shadows", ["--shadows"]], ["ao", ["--ao", "8"]], ["fog", ["--fog"]]]) {
     await after(() => page.check(`#${id}`));
     const on = await compare(`the ${id} toggle`, [...top, ...flags]);

@@ -8,7 +8,7 @@ use clap::ArgMatches;
 use voxtrace::{Background, Occlusion};
 use voxtrace_flags::{Aim, CameraFlags, Effects, Sampling};
 
-use super::{Args, BackgroundArg, OrbitArg, ProjectionArg};
+use super::{Args, BackgroundArg, OrbitArg, ProjectionArg, QualityArg};
 
 /// Which of the flags that can change nothing the command line gave, for
 /// the notes that say so. "On the command line" is clap's word, not a
@@ -106,7 +106,7 @@ impl Args {
                 spp: self.spp,
                 noise_threshold: self.noise_threshold,
                 max_spp: self.max_spp,
-                quality: self.quality.quality(),
+                quality: self.quality.map(QualityArg::quality),
             },
             fog: self.fog,
             background,

@@ -20,9 +20,13 @@ pub enum ProjectionArg {
 /// `--quality`: the shared crate's [`Quality`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum QualityArg {
-    /// The default look, fast.
-    Preview,
-    /// Converged path tracing, or shadows, occlusion and 16 samples.
+    /// Fast: one sample, no effects (the terrain's default look).
+    #[value(alias = "preview")]
+    Draft,
+    /// Shadows, 8 occlusion rays and 4 samples (a model's default look).
+    Standard,
+    /// Converged path tracing, or shadows, 16 occlusion rays and 16
+    /// samples.
     Final,
 }
 
@@ -31,7 +35,8 @@ impl QualityArg {
     #[must_use]
     pub fn quality(self) -> Quality {
         match self {
-            QualityArg::Preview => Quality::Preview,
+            QualityArg::Draft => Quality::Draft,
+            QualityArg::Standard => Quality::Standard,
             QualityArg::Final => Quality::Final,
         }
     }
