@@ -59,9 +59,10 @@ pub struct Args {
     /// Camera position X,Y,Z [default: N-10,N-10,N-10, or where that is
     /// inside the ground the view that sees the most of the terrain; with
     /// --vox and no camera flag, of eight views around the model from 30
-    /// degrees above, the one that sees the most of it, framed, at --fov
-    /// 30; with other camera flags, the model's front from a little
-    /// above].
+    /// degrees above, the one of its front half (--orbit yaw 315 to 45)
+    /// that sees the most of it, unless another side sees clearly more (a
+    /// room's open side), framed, at --fov 30; with other camera flags,
+    /// the model's front from a little above].
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, conflicts_with_all = ["view", "orbit"])]
     pub position: Option<Vec3>,
 

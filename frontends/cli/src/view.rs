@@ -34,7 +34,8 @@ pub fn camera_settings(
 
 /// The camera flags with the measured default view in place of the fixed
 /// one when no camera flag was given (`explicit` false): for a model, the
-/// orbit that sees the most of it ([`open_side`]) at the narrower
+/// orbit of its front half that sees the most of it, unless another side
+/// sees clearly more ([`open_side`]), at the narrower
 /// [`MODEL_FOV`]; for the terrain, the same choice at the paper's lens
 /// only when the paper's camera would start inside a voxel or on its
 /// target (elsewhere it stays the default, byte for byte). Otherwise
