@@ -114,6 +114,19 @@ enum VtStatus vt_render(const struct VtScene *scene,
                         uint8_t *rgba,
                         size_t len);
 
+// Fills `*out` with the camera the CLI takes for `scene` at `width` x
+// `height` when no camera flag is given (what its `--stats` prints as
+// `camera:`): the terrain's paper camera, or for a model (and a caller's
+// voxels) the measured view from its front half. `vt_render` through it
+// writes the CLI's default frame.
+//
+// # Safety
+// `scene` is a live scene or null; `out` is null or writable.
+enum VtStatus vt_default_view(const struct VtScene *scene,
+                              uint32_t width,
+                              uint32_t height,
+                              struct VtView *out);
+
 // The seeded terrain over `[-size, size)^3` (the CLI's `--seed` and
 // `--size`), built in `backend`, into `*out` (free it with
 // [`vt_scene_free`]).

@@ -21,7 +21,7 @@ use voxtrace_flags::{Built, Stage, Subject};
 mod render;
 mod scene;
 
-pub use render::vt_render;
+pub use render::{vt_default_view, vt_render};
 pub use scene::{vt_scene_free, vt_scene_terrain, vt_scene_vox, vt_scene_voxels};
 
 /// What a call did.

@@ -5,7 +5,8 @@ use voxtrace::glam::Vec3;
 use voxtrace::rayon::ThreadPoolBuilder;
 use voxtrace::{render, unpack, Camera, Framebuffer, Occlusion, Rect, Target};
 use voxtrace_flags::{
-    render_options, resolve, Aim, CameraFlags, Effects, Quality, Sampling, Subject, Tracer,
+    default_lens, measured_view, render_options, resolve, Aim, CameraFlags, Effects, Quality,
+    Sampling, Subject, Tracer,
 };
 
 use crate::{
@@ -178,6 +179,61 @@ pub unsafe extern "C" fn vt_render(
         for (bytes, &pixel) in out.chunks_exact_mut(4).zip(&pixels) {
             bytes.copy_from_slice(&unpack(pixel));
         }
+        Ok(())
+    })
+}
+
+/// Fills `*out` with the camera the CLI takes for `scene` at `width` x
+/// `height` when no camera flag is given (what its `--stats` prints as
+/// `camera:`): the terrain's paper camera, or for a model (and a caller's
+/// voxels) the measured view from its front half. `vt_render` through it
+/// writes the CLI's default frame.
+///
+/// # Safety
+/// `scene` is a live scene or null; `out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn vt_default_view(
+    scene: *const VtScene,
+    width: u32,
+    height: u32,
+    out: *mut VtView,
+) -> VtStatus {
+    guarded(|| {
+        // SAFETY: null or live, as the caller promises.
+        let Some(scene) = (unsafe { scene.as_ref() }) else {
+            return Err(invalid("scene is null"));
+        };
+        if out.is_null() {
+            return Err(invalid("out is null"));
+        }
+        if width == 0 || height == 0 {
+            return Err(invalid(format!(
+                "a {width}x{height} frame: both sides at least 1"
+            )));
+        }
+        let stage = scene.stage();
+        let flags = CameraFlags::new(width, height, Aim::Default);
+        let inside = |position: Vec3| {
+            let cell = position.floor().as_ivec3();
+            scene
+                .subject
+                .as_ref()
+                .is_some_and(|s| s.bounds().contains(cell) && s.material(cell) != 0)
+        };
+        let flags = match default_lens(flags, &stage, inside) {
+            Some(lens) => measured_view(lens, scene.built.scene(), &stage),
+            None => flags,
+        };
+        let settings = resolve(&flags, &stage).map_err(invalid)?;
+        let view = VtView {
+            width,
+            height,
+            position: settings.lookfrom.to_array(),
+            lookat: settings.lookat.to_array(),
+            fov: settings.vertical_fov,
+        };
+        // SAFETY: checked non-null; the caller gives a writable pointer.
+        unsafe { *out = view };
         Ok(())
     })
 }

@@ -189,6 +189,64 @@ fn a_vox_file_in_memory_renders_and_a_damaged_one_is_refused() {
 }
 
 #[test]
+fn the_default_view_is_the_papers_camera_or_a_models_front() {
+    // At size 100 the paper's camera (90, 90, 90) stands in air.
+    let scene = terrain(100, 1, VtBackend::Octree);
+    let mut view = VtView {
+        width: 0,
+        height: 0,
+        position: [0.0; 3],
+        lookat: [0.0; 3],
+        fov: 0.0,
+    };
+    assert_eq!(
+        unsafe { vt_default_view(scene, 64, 36, &mut view) },
+        VtStatus::Ok
+    );
+    let paper = CameraSettings::paper(100);
+    assert_eq!(Vec3::from_array(view.position), paper.lookfrom);
+    assert_eq!(Vec3::from_array(view.lookat), paper.lookat);
+    assert_eq!(
+        (view.width, view.height, view.fov),
+        (64, 36, paper.vertical_fov)
+    );
+    assert_eq!(
+        unsafe { vt_default_view(scene, 0, 36, &mut view) },
+        VtStatus::InvalidArgument
+    );
+    assert_eq!(
+        unsafe { vt_default_view(scene, 64, 36, null_mut()) },
+        VtStatus::InvalidArgument
+    );
+    assert_eq!(
+        unsafe { vt_default_view(null(), 64, 36, &mut view) },
+        VtStatus::InvalidArgument
+    );
+    unsafe { vt_scene_free(scene) };
+    // A model: from its front half (+z side, yaw 315 to 45), 30 degrees
+    // above, through the model lens.
+    let file = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../docs/terrain.vox"
+    ))
+    .unwrap();
+    let mut scene = null_mut();
+    let status =
+        unsafe { vt_scene_vox(file.as_ptr(), file.len(), 0, VtBackend::Dense, &mut scene) };
+    assert_eq!(status, VtStatus::Ok, "{}", last_error());
+    assert_eq!(
+        unsafe { vt_default_view(scene, 64, 36, &mut view) },
+        VtStatus::Ok
+    );
+    let back = Vec3::from_array(view.position) - Vec3::from_array(view.lookat);
+    assert!(back.z > 0.0 && back.z >= back.x.abs() * 0.99, "{back}");
+    assert!((back.y / back.length() - 0.5).abs() < 1e-3, "{back}");
+    assert_eq!(view.fov, voxtrace_flags::MODEL_FOV);
+    assert!(frame(scene, &view, None, 2).chunks(4).any(|p| p[3] == 255));
+    unsafe { vt_scene_free(scene) };
+}
+
+#[test]
 fn every_refusal_is_a_status_and_a_message() {
     let mut scene = null_mut();
     let refused = |status: VtStatus, words: &str| {

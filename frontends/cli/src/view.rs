@@ -8,7 +8,7 @@ use voxtrace::glam::Vec3;
 use voxtrace::{CameraSettings, Projection, VoxCamera, VoxCameraMode};
 use voxtrace_cli::errors::show_path;
 use voxtrace_cli::Backend;
-use voxtrace_flags::{open_side, resolve, Aim, CameraFlags, Stage, MODEL_FOV};
+use voxtrace_flags::{default_lens, measured_view, resolve, CameraFlags, Stage};
 
 use crate::memory;
 use crate::subject::{FileCameras, Subject};
@@ -33,13 +33,13 @@ pub fn camera_settings(
 }
 
 /// The camera flags with the measured default view in place of the fixed
-/// one when no camera flag was given (`explicit` false): for a model, the
-/// orbit of its front half that sees the most of it, unless another side
-/// sees clearly more ([`open_side`]), at the narrower
-/// [`MODEL_FOV`]; for the terrain, the same choice at the paper's lens
-/// only when the paper's camera would start inside a voxel or on its
-/// target (elsewhere it stays the default, byte for byte). Otherwise
-/// `flags` as they are.
+/// one when no camera flag was given (`explicit` false), as every
+/// frontend measures it ([`default_lens`], [`measured_view`]): for a
+/// model, the orbit of its front half that sees the most of it, unless
+/// another side sees clearly more, at the narrower model lens; for the
+/// terrain, the same choice at the paper's lens only when the paper's
+/// camera would start inside a voxel or on its target (elsewhere it stays
+/// the default, byte for byte). Otherwise `flags` as they are.
 ///
 /// The measurement builds an octree of the subject on this thread, and
 /// only when it fits in memory with `max_memory` (else the fixed view
@@ -50,16 +50,14 @@ pub fn measured_default(
     subject: &Subject<'_>,
     max_memory: Option<u64>,
 ) -> CameraFlags {
-    if explicit || flags.aim != Aim::Default {
-        return flags;
-    }
     let stage = subject.shown.stage();
-    let fov = match (subject.shown.model(), stage.default_position) {
-        (Some(_), _) => MODEL_FOV,
-        (None, Some(position)) if !blocked(subject, position, stage.target) => return flags,
-        (None, _) => flags.fov,
+    let inside = |position: Vec3| {
+        let cell = position.floor().as_ivec3();
+        subject.shown.bounds().contains(cell) && subject.shown.material(cell) != 0
     };
-    let lens = CameraFlags { fov, ..flags };
+    let Some(lens) = default_lens(flags, &stage, inside).filter(|_| !explicit) else {
+        return flags;
+    };
     let budget = memory::budget(
         Backend::Octree,
         subject.shown.bounds(),
@@ -73,19 +71,7 @@ pub fn measured_default(
     let Ok((built, _, _)) = subject.build(Backend::Octree, false) else {
         return flags;
     };
-    let orbit = open_side(built.scene(), &lens, &stage);
-    CameraFlags {
-        aim: Aim::Orbit(orbit),
-        ..lens
-    }
-}
-
-/// Whether a camera at `position` looking at `target` sees nothing of
-/// `subject`: it starts inside a solid voxel, or on its target.
-fn blocked(subject: &Subject<'_>, position: Vec3, target: Vec3) -> bool {
-    let cell = position.floor().as_ivec3();
-    position == target
-        || (subject.shown.bounds().contains(cell) && subject.shown.material(cell) != 0)
+    measured_view(lens, built.scene(), &stage)
 }
 
 /// What the file's camera `n` names, for an image of `width` x `height`

@@ -29,6 +29,8 @@ pub mod subject;
 pub use camera::{describe, resolve, Aim, CameraFlags, Stage};
 pub use effects::{render_options, shoulder_sun, Effects};
 pub use framing::{fit, framing, Boxes, FILL, MODEL_VIEW};
-pub use open_side::{in_front_half, open_side, seen, Seen, MODEL_FOV, OPEN_SIDE_ORBITS};
+pub use open_side::{
+    default_lens, in_front_half, measured_view, open_side, seen, Seen, MODEL_FOV, OPEN_SIDE_ORBITS,
+};
 pub use quality::{Quality, Sampling};
 pub use subject::{materials_of, Backend, Built, Subject, Tracer};

@@ -2,6 +2,7 @@
 //! orbits, the one whose small, cheap image sees the most of the scene
 //! (a room's open side, a car's flank), framed as any orbit is.
 
+use voxtrace::glam::Vec3;
 use voxtrace::{Camera, Orbit, Scene};
 
 use crate::camera::{resolve, Aim, CameraFlags, Stage};
@@ -124,6 +125,43 @@ pub fn open_side<S: Scene + ?Sized>(scene: &S, flags: &CameraFlags, stage: &Stag
             }
         }
         [(_, front_orbit), _] => front_orbit,
+    }
+}
+
+/// The lens the default view (no camera flag: `flags.aim` is
+/// [`Aim::Default`]) is measured with on `stage`, or `None` when the
+/// flags stay as they are. A model is measured at [`MODEL_FOV`]; the
+/// terrain keeps the paper's camera, byte for byte, unless it would start
+/// inside a voxel (`inside`) or on its target, and is then measured at
+/// the flags' own lens.
+#[must_use]
+pub fn default_lens(
+    flags: CameraFlags,
+    stage: &Stage<'_>,
+    inside: impl Fn(Vec3) -> bool,
+) -> Option<CameraFlags> {
+    if flags.aim != Aim::Default {
+        return None;
+    }
+    let fov = match stage.default_position {
+        None => MODEL_FOV,
+        Some(position) if position != stage.target && !inside(position) => return None,
+        Some(_) => flags.fov,
+    };
+    Some(CameraFlags { fov, ..flags })
+}
+
+/// The measured default view through `lens` ([`default_lens`]): the
+/// orbit [`open_side`] picks on `scene`, at that lens.
+#[must_use]
+pub fn measured_view<S: Scene + ?Sized>(
+    lens: CameraFlags,
+    scene: &S,
+    stage: &Stage<'_>,
+) -> CameraFlags {
+    CameraFlags {
+        aim: Aim::Orbit(open_side(scene, &lens, stage)),
+        ..lens
     }
 }
 
