@@ -61,7 +61,8 @@ typedef struct VtView {
   uint32_t height;
   // Where the camera stands.
   float position[3];
-  // What it looks at.
+  // What it looks at (NaN on any axis: the CLI's default target, the
+  // terrain's origin or the model's center).
   float lookat[3];
   // Vertical field of view in degrees (`0`: the CLI's 60).
   float fov;

@@ -76,7 +76,8 @@ pub struct VtView {
     pub height: u32,
     /// Where the camera stands.
     pub position: [f32; 3],
-    /// What it looks at.
+    /// What it looks at (NaN on any axis: the CLI's default target, the
+    /// terrain's origin or the model's center).
     pub lookat: [f32; 3],
     /// Vertical field of view in degrees (`0`: the CLI's 60).
     pub fov: f32,
@@ -182,4 +183,26 @@ pub unsafe extern "C" fn vt_last_error(buffer: *mut c_char, capacity: usize) -> 
         }
         bytes.len()
     })
+}
+
+/// `width` x `height` packed pixels as a PNG file's bytes, by the encoder
+/// the CLI writes with (for Rust frontends of this crate: the Python
+/// module's `save`; not part of the C ABI).
+///
+/// # Errors
+/// The encoder's message.
+pub fn encode_png(width: u32, height: u32, pixels: &[u32]) -> Result<Vec<u8>, String> {
+    let mut png = Vec::new();
+    voxtrace::encode_png(&mut png, width, height, pixels).map_err(|e| e.to_string())?;
+    Ok(png)
+}
+
+/// A PNG file's bytes as `(width, height, packed pixels)`, by the decoder
+/// the golden tests read with (for Rust frontends of this crate: the
+/// Python module's `assert_golden`; not part of the C ABI).
+///
+/// # Errors
+/// The decoder's message.
+pub fn decode_png(bytes: &[u8]) -> Result<(u32, u32, Vec<u32>), String> {
+    voxtrace::decode_png(std::io::Cursor::new(bytes)).map_err(|e| e.to_string())
 }

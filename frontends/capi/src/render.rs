@@ -152,9 +152,10 @@ pub unsafe extern "C" fn vt_render(
         } else {
             view.fov
         };
+        let lookat = Vec3::from_array(view.lookat);
         let flags = CameraFlags {
             fov,
-            lookat: Some(Vec3::from_array(view.lookat)),
+            lookat: (!lookat.is_nan()).then_some(lookat),
             ..CameraFlags::new(
                 view.width,
                 view.height,
