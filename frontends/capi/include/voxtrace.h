@@ -9,6 +9,17 @@
 #include <stdint.h>
 #include <stdlib.h>
 
+// [`vt_scene_terrain`]'s (and every scene's) `backend`: the sparse
+// octree, the CLI's default.
+#define VT_BACKEND_OCTREE 0
+
+// `backend`: the flat array, one byte per voxel.
+#define VT_BACKEND_DENSE 1
+
+// The most threads [`vt_render`] starts (0 uses rayon's global pool,
+// one thread per core).
+#define VT_MAX_THREADS 256
+
 // [`VtEffects::quality`]: the scene's default (standard for a `.vox`
 // model, draft otherwise).
 #define VT_QUALITY_DEFAULT 0
@@ -31,7 +42,8 @@ typedef enum VtStatus {
   // An argument out of range: a null pointer, a size, a camera the
   // core refuses, a buffer too small.
   VT_STATUS_INVALID_ARGUMENT = 1,
-  // The `.vox` bytes are not a file voxtrace reads.
+  // The `.vox` bytes are not a file voxtrace reads, or hold no such
+  // animation frame.
   VT_STATUS_BAD_FILE = 2,
   // Memory ran out building the scene or the frame.
   VT_STATUS_OUT_OF_MEMORY = 3,
@@ -40,14 +52,6 @@ typedef enum VtStatus {
   // A bug in voxtrace: a panic, caught at the boundary.
   VT_STATUS_PANIC = 5,
 } VtStatus;
-
-// The storage a scene is built in.
-typedef enum VtBackend {
-  // The sparse octree (the CLI's default).
-  VT_BACKEND_OCTREE = 0,
-  // The flat array, one byte per voxel.
-  VT_BACKEND_DENSE = 1,
-} VtBackend;
 
 // A built scene: what it shows and its storage. Opaque to C.
 typedef struct VtScene VtScene;
@@ -69,9 +73,10 @@ typedef struct VtView {
 } VtView;
 
 // Effects as the CLI's flags give them; zeroes are the CLI's defaults.
+// The switches are bytes, any value but 0 meaning on.
 typedef struct VtEffects {
   // `--shadows`.
-  bool shadows;
+  uint8_t shadows;
   // `--ao N` (0: off, unless the quality turns it on).
   uint16_t ao_rays;
   // `--ao-distance` (0: 8 voxels).
@@ -79,9 +84,9 @@ typedef struct VtEffects {
   // `--spp N` (0: the quality's).
   uint16_t spp;
   // `--fog`.
-  bool fog;
+  uint8_t fog;
   // `--flat`.
-  bool flat;
+  uint8_t flat;
   // `--quality`: one of the `VT_QUALITY_` numbers.
   uint32_t quality;
 } VtEffects;
@@ -90,10 +95,11 @@ typedef struct VtEffects {
 extern "C" {
 #endif // __cplusplus
 
-// Copies this thread's last error message into `buffer` (`capacity`
-// bytes, cut to fit and always NUL-terminated when `capacity` is at
-// least 1; `buffer` may be null to ask the length) and returns its
-// length in bytes without the NUL. An empty message when no call failed.
+// Copies the message of this thread's last failed call into `buffer`
+// (`capacity` bytes, cut to fit and always NUL-terminated when
+// `capacity` is at least 1; `buffer` may be null to ask the length) and
+// returns its length in bytes without the NUL: empty before any call
+// failed; a call that succeeds leaves it as it was.
 //
 // # Safety
 // `buffer` is null or points to `capacity` writable bytes.
@@ -102,8 +108,9 @@ size_t vt_last_error(char *buffer, size_t capacity);
 // Renders `scene` through `view` with `effects` (null: the CLI's
 // defaults) into `rgba`, `view.width * view.height` pixels of 4 bytes
 // (R, G, B, A), rows from the top: the bytes the CLI writes for the same
-// flags. `threads` 1 renders on this thread; 0 on one thread per core,
-// any other count on that many (the bytes are the same).
+// flags. `threads` 1 renders on this thread; 0 on rayon's global pool,
+// one thread per core; any other count up to [`VT_MAX_THREADS`] on a
+// pool of that many started for the call (the bytes are the same).
 //
 // # Safety
 // `scene` is a live scene or null, `view` readable or null, `effects`
@@ -129,15 +136,12 @@ enum VtStatus vt_default_view(const struct VtScene *scene,
                               struct VtView *out);
 
 // The seeded terrain over `[-size, size)^3` (the CLI's `--seed` and
-// `--size`), built in `backend`, into `*out` (free it with
-// [`vt_scene_free`]).
+// `--size`), built in `backend` (a `VT_BACKEND_` number), into `*out`
+// (free it with [`vt_scene_free`]).
 //
 // # Safety
 // `out` is null or writable.
-enum VtStatus vt_scene_terrain(int32_t size,
-                               uint64_t seed,
-                               enum VtBackend backend,
-                               struct VtScene **out);
+enum VtStatus vt_scene_terrain(int32_t size, uint64_t seed, uint32_t backend, struct VtScene **out);
 
 // Frame `frame` (from 0; 0 for a still) of the MagicaVoxel `.vox` file
 // in `bytes` (`len` of them), built in `backend`, into `*out`.
@@ -147,13 +151,13 @@ enum VtStatus vt_scene_terrain(int32_t size,
 enum VtStatus vt_scene_vox(const uint8_t *bytes,
                            size_t len,
                            uint32_t frame,
-                           enum VtBackend backend,
+                           uint32_t backend,
                            struct VtScene **out);
 
 // A scene from a caller's voxels: `indices` holds `nx * ny * nz` palette
 // indices (0: empty), x fastest, then y (up), then z, placed at
 // `[0, n)` on each axis; `palette` holds 255 RGB triples for indices 1
-// to 255 (765 bytes; null: the terrain's colors by height). Built in
+// to 255 (765 bytes; null: gray `(i, i, i)` for index `i`). Built in
 // `backend` into `*out`.
 //
 // # Safety
@@ -164,7 +168,7 @@ enum VtStatus vt_scene_voxels(const uint8_t *indices,
                               uint32_t ny,
                               uint32_t nz,
                               const uint8_t *palette,
-                              enum VtBackend backend,
+                              uint32_t backend,
                               struct VtScene **out);
 
 // Frees a scene from `vt_scene_*` (null: nothing).

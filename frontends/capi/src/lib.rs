@@ -33,7 +33,8 @@ pub enum VtStatus {
     /// An argument out of range: a null pointer, a size, a camera the
     /// core refuses, a buffer too small.
     InvalidArgument = 1,
-    /// The `.vox` bytes are not a file voxtrace reads.
+    /// The `.vox` bytes are not a file voxtrace reads, or hold no such
+    /// animation frame.
     BadFile = 2,
     /// Memory ran out building the scene or the frame.
     OutOfMemory = 3,
@@ -43,15 +44,27 @@ pub enum VtStatus {
     Panic = 5,
 }
 
-/// The storage a scene is built in.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum VtBackend {
-    /// The sparse octree (the CLI's default).
-    Octree = 0,
-    /// The flat array, one byte per voxel.
-    Dense = 1,
+/// [`vt_scene_terrain`]'s (and every scene's) `backend`: the sparse
+/// octree, the CLI's default.
+pub const VT_BACKEND_OCTREE: u32 = 0;
+/// `backend`: the flat array, one byte per voxel.
+pub const VT_BACKEND_DENSE: u32 = 1;
+
+/// The storage `backend` names, or the refusal of another number (a C
+/// enum could hold any, which Rust must not read as one of its own).
+fn backend_of(backend: u32) -> Result<voxtrace_flags::Backend, (VtStatus, String)> {
+    match backend {
+        VT_BACKEND_OCTREE => Ok(voxtrace_flags::Backend::Octree),
+        VT_BACKEND_DENSE => Ok(voxtrace_flags::Backend::Dense),
+        n => Err(invalid(format!(
+            "backend {n} is not 0 (octree) or 1 (dense)"
+        ))),
+    }
 }
+
+/// The most threads [`vt_render`] starts (0 uses rayon's global pool,
+/// one thread per core).
+pub const VT_MAX_THREADS: u32 = 256;
 
 /// [`VtEffects::quality`]: the scene's default (standard for a `.vox`
 /// model, draft otherwise).
@@ -84,11 +97,12 @@ pub struct VtView {
 }
 
 /// Effects as the CLI's flags give them; zeroes are the CLI's defaults.
+/// The switches are bytes, any value but 0 meaning on.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct VtEffects {
     /// `--shadows`.
-    pub shadows: bool,
+    pub shadows: u8,
     /// `--ao N` (0: off, unless the quality turns it on).
     pub ao_rays: u16,
     /// `--ao-distance` (0: 8 voxels).
@@ -96,9 +110,9 @@ pub struct VtEffects {
     /// `--spp N` (0: the quality's).
     pub spp: u16,
     /// `--fog`.
-    pub fog: bool,
+    pub fog: u8,
     /// `--flat`.
-    pub flat: bool,
+    pub flat: u8,
     /// `--quality`: one of the `VT_QUALITY_` numbers.
     pub quality: u32,
 }
@@ -161,10 +175,11 @@ fn refused(error: voxtrace::Error) -> (VtStatus, String) {
     (status, error.to_string())
 }
 
-/// Copies this thread's last error message into `buffer` (`capacity`
-/// bytes, cut to fit and always NUL-terminated when `capacity` is at
-/// least 1; `buffer` may be null to ask the length) and returns its
-/// length in bytes without the NUL. An empty message when no call failed.
+/// Copies the message of this thread's last failed call into `buffer`
+/// (`capacity` bytes, cut to fit and always NUL-terminated when
+/// `capacity` is at least 1; `buffer` may be null to ask the length) and
+/// returns its length in bytes without the NUL: empty before any call
+/// failed; a call that succeeds leaves it as it was.
 ///
 /// # Safety
 /// `buffer` is null or points to `capacity` writable bytes.

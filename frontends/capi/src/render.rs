@@ -10,8 +10,8 @@ use voxtrace_flags::{
 };
 
 use crate::{
-    guarded, invalid, refused, VtEffects, VtScene, VtStatus, VtView, VT_QUALITY_DEFAULT,
-    VT_QUALITY_DRAFT, VT_QUALITY_FINAL, VT_QUALITY_STANDARD,
+    guarded, invalid, refused, VtEffects, VtScene, VtStatus, VtView, VT_MAX_THREADS,
+    VT_QUALITY_DEFAULT, VT_QUALITY_DRAFT, VT_QUALITY_FINAL, VT_QUALITY_STANDARD,
 };
 
 /// The effect flags `effects` names (null: none), as the CLI reads its own.
@@ -40,7 +40,7 @@ fn effects_of(effects: Option<&VtEffects>) -> Result<Effects, (VtStatus, String)
     if e.ao_distance > 0.0 {
         out.ao_distance = e.ao_distance;
     }
-    out.shadows = e.shadows;
+    out.shadows = e.shadows != 0;
     out.occlusion = (e.ao_rays > 0).then_some(Occlusion {
         rays: e.ao_rays,
         distance: out.ao_distance,
@@ -50,8 +50,8 @@ fn effects_of(effects: Option<&VtEffects>) -> Result<Effects, (VtStatus, String)
         quality,
         ..Sampling::default()
     };
-    out.fog = e.fog;
-    out.flat = e.flat;
+    out.fog = e.fog != 0;
+    out.flat = e.flat != 0;
     Ok(out)
 }
 
@@ -85,16 +85,7 @@ impl Tracer for Job<'_> {
             .map_err(refused)?;
             return Ok(pixels);
         }
-        let pool = ThreadPoolBuilder::new()
-            .num_threads(self.threads as usize)
-            .build()
-            .map_err(|e| {
-                (
-                    VtStatus::RenderFailed,
-                    format!("cannot start worker threads: {e}"),
-                )
-            })?;
-        pool.install(|| {
+        let threaded = || {
             let frame = Framebuffer::new_parallel(region.width, region.height).map_err(refused)?;
             render(
                 scene,
@@ -106,15 +97,30 @@ impl Tracer for Job<'_> {
             )
             .map_err(refused)?;
             Ok(frame.to_vec())
-        })
+        };
+        if self.threads == 0 {
+            // rayon's global pool: one thread per core, started once.
+            return threaded();
+        }
+        ThreadPoolBuilder::new()
+            .num_threads(self.threads as usize)
+            .build()
+            .map_err(|e| {
+                (
+                    VtStatus::RenderFailed,
+                    format!("cannot start worker threads: {e}"),
+                )
+            })?
+            .install(threaded)
     }
 }
 
 /// Renders `scene` through `view` with `effects` (null: the CLI's
 /// defaults) into `rgba`, `view.width * view.height` pixels of 4 bytes
 /// (R, G, B, A), rows from the top: the bytes the CLI writes for the same
-/// flags. `threads` 1 renders on this thread; 0 on one thread per core,
-/// any other count on that many (the bytes are the same).
+/// flags. `threads` 1 renders on this thread; 0 on rayon's global pool,
+/// one thread per core; any other count up to [`VT_MAX_THREADS`] on a
+/// pool of that many started for the call (the bytes are the same).
 ///
 /// # Safety
 /// `scene` is a live scene or null, `view` readable or null, `effects`
@@ -136,6 +142,11 @@ pub unsafe extern "C" fn vt_render(
         };
         if rgba.is_null() {
             return Err(invalid("rgba is null"));
+        }
+        if threads > VT_MAX_THREADS {
+            return Err(invalid(format!(
+                "{threads} threads: at most {VT_MAX_THREADS}"
+            )));
         }
         let needed = (view.width as usize)
             .checked_mul(view.height as usize)

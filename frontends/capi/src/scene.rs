@@ -3,36 +3,34 @@
 
 use voxtrace::glam::{IVec3, U8Vec3};
 use voxtrace::{FnSource, IAabb, Palette, VoxModel};
-use voxtrace_flags::{Backend, Built, Subject};
+use voxtrace_flags::{Built, Subject};
 
-use crate::{guarded, invalid, refused, VtBackend, VtScene, VtStatus};
+use crate::{backend_of, guarded, invalid, refused, VtScene, VtStatus};
 
 /// Builds `subject` in `backend` (in parallel) and hands it to `out`.
-fn publish(subject: Subject, backend: VtBackend, out: *mut *mut VtScene) -> VtStatus {
-    guarded(|| {
-        if out.is_null() {
-            return Err(invalid("out is null"));
-        }
-        let backend = match backend {
-            VtBackend::Octree => Backend::Octree,
-            VtBackend::Dense => Backend::Dense,
-        };
-        let built = subject.build(backend, true).map_err(refused)?;
-        let bounds = subject.bounds();
-        let scene = Box::new(VtScene {
-            subject: Some(subject),
-            bounds,
-            built,
-        });
-        // SAFETY: checked non-null; the caller gives a writable pointer.
-        unsafe { *out = Box::into_raw(scene) };
-        Ok(())
-    })
+fn publish(
+    subject: Subject,
+    backend: u32,
+    out: *mut *mut VtScene,
+) -> Result<(), (VtStatus, String)> {
+    if out.is_null() {
+        return Err(invalid("out is null"));
+    }
+    let built = subject.build(backend_of(backend)?, true).map_err(refused)?;
+    let bounds = subject.bounds();
+    let scene = Box::new(VtScene {
+        subject: Some(subject),
+        bounds,
+        built,
+    });
+    // SAFETY: checked non-null; the caller gives a writable pointer.
+    unsafe { *out = Box::into_raw(scene) };
+    Ok(())
 }
 
 /// The seeded terrain over `[-size, size)^3` (the CLI's `--seed` and
-/// `--size`), built in `backend`, into `*out` (free it with
-/// [`vt_scene_free`]).
+/// `--size`), built in `backend` (a `VT_BACKEND_` number), into `*out`
+/// (free it with [`vt_scene_free`]).
 ///
 /// # Safety
 /// `out` is null or writable.
@@ -40,18 +38,16 @@ fn publish(subject: Subject, backend: VtBackend, out: *mut *mut VtScene) -> VtSt
 pub unsafe extern "C" fn vt_scene_terrain(
     size: i32,
     seed: u64,
-    backend: VtBackend,
+    backend: u32,
     out: *mut *mut VtScene,
 ) -> VtStatus {
-    if !(1..=voxtrace::MAX_COORD).contains(&size) {
-        return guarded(|| {
-            Err(invalid(format!(
-                "size {size} is not in 1..={}",
-                voxtrace::MAX_COORD
-            )))
-        });
-    }
-    publish(Subject::Terrain { seed, size }, backend, out)
+    guarded(|| {
+        if !(1..=voxtrace::MAX_COORD).contains(&size) {
+            let max = voxtrace::MAX_COORD;
+            return Err(invalid(format!("size {size} is not in 1..={max}")));
+        }
+        publish(Subject::Terrain { seed, size }, backend, out)
+    })
 }
 
 /// Frame `frame` (from 0; 0 for a still) of the MagicaVoxel `.vox` file
@@ -64,24 +60,25 @@ pub unsafe extern "C" fn vt_scene_vox(
     bytes: *const u8,
     len: usize,
     frame: u32,
-    backend: VtBackend,
+    backend: u32,
     out: *mut *mut VtScene,
 ) -> VtStatus {
-    if bytes.is_null() {
-        return guarded(|| Err(invalid("bytes is null")));
-    }
-    // SAFETY: the caller gives `len` readable bytes.
-    let file = unsafe { std::slice::from_raw_parts(bytes, len) };
-    match VoxModel::from_bytes_frame(file, frame) {
-        Ok(model) => publish(Subject::Model(Box::new(model)), backend, out),
-        Err(e) => guarded(|| Err((VtStatus::BadFile, e.to_string()))),
-    }
+    guarded(|| {
+        if bytes.is_null() {
+            return Err(invalid("bytes is null"));
+        }
+        // SAFETY: the caller gives `len` readable bytes.
+        let file = unsafe { std::slice::from_raw_parts(bytes, len) };
+        let model = VoxModel::from_bytes_frame(file, frame)
+            .map_err(|e| (VtStatus::BadFile, e.to_string()))?;
+        publish(Subject::Model(Box::new(model)), backend, out)
+    })
 }
 
 /// A scene from a caller's voxels: `indices` holds `nx * ny * nz` palette
 /// indices (0: empty), x fastest, then y (up), then z, placed at
 /// `[0, n)` on each axis; `palette` holds 255 RGB triples for indices 1
-/// to 255 (765 bytes; null: the terrain's colors by height). Built in
+/// to 255 (765 bytes; null: gray `(i, i, i)` for index `i`). Built in
 /// `backend` into `*out`.
 ///
 /// # Safety
@@ -94,7 +91,7 @@ pub unsafe extern "C" fn vt_scene_voxels(
     ny: u32,
     nz: u32,
     palette: *const u8,
-    backend: VtBackend,
+    backend: u32,
     out: *mut *mut VtScene,
 ) -> VtStatus {
     guarded(|| {
@@ -115,6 +112,7 @@ pub unsafe extern "C" fn vt_scene_voxels(
         let len = (nx as usize)
             .checked_mul(ny as usize)
             .and_then(|n| n.checked_mul(nz as usize))
+            .filter(|&n| n <= isize::MAX as usize)
             .ok_or_else(|| invalid("the volume does not fit in memory"))?;
         // SAFETY: the caller gives `len` readable bytes (and 765 of palette).
         let cells = unsafe { std::slice::from_raw_parts(indices, len) };
@@ -131,10 +129,7 @@ pub unsafe extern "C" fn vt_scene_voxels(
             let p = p.as_uvec3();
             cells[p.x as usize + nx as usize * (p.y as usize + ny as usize * p.z as usize)]
         });
-        let backend = match backend {
-            VtBackend::Octree => Backend::Octree,
-            VtBackend::Dense => Backend::Dense,
-        };
+        let backend = backend_of(backend)?;
         let built = Built::build(backend, &source, bounds, true).map_err(refused)?;
         let scene = Box::new(VtScene {
             subject: None,

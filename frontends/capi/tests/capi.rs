@@ -18,7 +18,7 @@ fn last_error() -> String {
 }
 
 /// The terrain of `size` and `seed` in `backend`.
-fn terrain(size: i32, seed: u64, backend: VtBackend) -> *mut VtScene {
+fn terrain(size: i32, seed: u64, backend: u32) -> *mut VtScene {
     let mut scene = null_mut();
     assert_eq!(
         unsafe { vt_scene_terrain(size, seed, backend, &mut scene) },
@@ -54,13 +54,13 @@ fn frame(
 #[test]
 fn every_thread_count_and_backend_gives_the_same_bytes() {
     let effects = VtEffects {
-        shadows: true,
+        shadows: 1,
         ao_rays: 4,
         spp: 2,
         ..VtEffects::default()
     };
-    let octree = terrain(24, 7, VtBackend::Octree);
-    let dense = terrain(24, 7, VtBackend::Dense);
+    let octree = terrain(24, 7, VT_BACKEND_OCTREE);
+    let dense = terrain(24, 7, VT_BACKEND_DENSE);
     let one = frame(octree, &VIEW, Some(&effects), 1);
     assert!(
         one.chunks(4).any(|p| p != one[..4].as_ref()),
@@ -113,7 +113,7 @@ fn a_callers_voxels_render_as_the_core_renders_them() {
             ny,
             nz,
             palette.as_ptr(),
-            VtBackend::Octree,
+            VT_BACKEND_OCTREE,
             &mut scene,
         )
     };
@@ -157,6 +157,40 @@ fn a_callers_voxels_render_as_the_core_renders_them() {
 }
 
 #[test]
+fn a_null_palette_is_gray_by_index() {
+    // One voxel of index 200 filling the view: its lit color is a gray.
+    let cells = [200u8; 27];
+    let mut scene = null_mut();
+    let status = unsafe {
+        vt_scene_voxels(
+            cells.as_ptr(),
+            3,
+            3,
+            3,
+            null(),
+            VT_BACKEND_DENSE,
+            &mut scene,
+        )
+    };
+    assert_eq!(status, VtStatus::Ok, "{}", last_error());
+    let view = VtView {
+        width: 8,
+        height: 8,
+        position: [1.5, 1.5, 9.0],
+        lookat: [1.5, 1.5, 1.5],
+        fov: 10.0,
+    };
+    let rgba = frame(scene, &view, None, 1);
+    unsafe { vt_scene_free(scene) };
+    let center = &rgba[(4 * 8 + 4) * 4..][..4];
+    assert!(
+        center[0] == center[1] && center[1] == center[2] && center[0] > 0,
+        "{center:?}"
+    );
+    assert!(center[0] <= 200, "{center:?}");
+}
+
+#[test]
 fn a_vox_file_in_memory_renders_and_a_damaged_one_is_refused() {
     let file = std::fs::read(concat!(
         env!("CARGO_MANIFEST_DIR"),
@@ -165,7 +199,7 @@ fn a_vox_file_in_memory_renders_and_a_damaged_one_is_refused() {
     .unwrap();
     let mut scene = null_mut();
     let status =
-        unsafe { vt_scene_vox(file.as_ptr(), file.len(), 0, VtBackend::Octree, &mut scene) };
+        unsafe { vt_scene_vox(file.as_ptr(), file.len(), 0, VT_BACKEND_OCTREE, &mut scene) };
     assert_eq!(status, VtStatus::Ok, "{}", last_error());
     let view = VtView {
         position: [60.0, 80.0, 60.0],
@@ -177,13 +211,13 @@ fn a_vox_file_in_memory_renders_and_a_damaged_one_is_refused() {
     unsafe { vt_scene_free(scene) };
     for cut in [0, 8, file.len() / 2] {
         let mut scene = null_mut();
-        let status = unsafe { vt_scene_vox(file.as_ptr(), cut, 0, VtBackend::Octree, &mut scene) };
+        let status = unsafe { vt_scene_vox(file.as_ptr(), cut, 0, VT_BACKEND_OCTREE, &mut scene) };
         assert_eq!(status, VtStatus::BadFile, "cut at {cut}");
         assert!(scene.is_null());
         assert!(!last_error().is_empty());
     }
     let status =
-        unsafe { vt_scene_vox(file.as_ptr(), file.len(), 5, VtBackend::Octree, &mut scene) };
+        unsafe { vt_scene_vox(file.as_ptr(), file.len(), 5, VT_BACKEND_OCTREE, &mut scene) };
     assert_eq!(status, VtStatus::BadFile);
     assert!(last_error().contains("frame"), "{}", last_error());
 }
@@ -191,7 +225,7 @@ fn a_vox_file_in_memory_renders_and_a_damaged_one_is_refused() {
 #[test]
 fn the_default_view_is_the_papers_camera_or_a_models_front() {
     // At size 100 the paper's camera (90, 90, 90) stands in air.
-    let scene = terrain(100, 1, VtBackend::Octree);
+    let scene = terrain(100, 1, VT_BACKEND_OCTREE);
     let mut view = VtView {
         width: 0,
         height: 0,
@@ -232,7 +266,7 @@ fn the_default_view_is_the_papers_camera_or_a_models_front() {
     .unwrap();
     let mut scene = null_mut();
     let status =
-        unsafe { vt_scene_vox(file.as_ptr(), file.len(), 0, VtBackend::Dense, &mut scene) };
+        unsafe { vt_scene_vox(file.as_ptr(), file.len(), 0, VT_BACKEND_DENSE, &mut scene) };
     assert_eq!(status, VtStatus::Ok, "{}", last_error());
     assert_eq!(
         unsafe { vt_default_view(scene, 64, 36, &mut view) },
@@ -258,24 +292,24 @@ fn every_refusal_is_a_status_and_a_message() {
         );
     };
     refused(
-        unsafe { vt_scene_terrain(0, 1, VtBackend::Octree, &mut scene) },
+        unsafe { vt_scene_terrain(0, 1, VT_BACKEND_OCTREE, &mut scene) },
         "size 0",
     );
     refused(
-        unsafe { vt_scene_terrain(8, 1, VtBackend::Octree, null_mut()) },
+        unsafe { vt_scene_terrain(8, 1, VT_BACKEND_OCTREE, null_mut()) },
         "null",
     );
     refused(
-        unsafe { vt_scene_vox(null(), 4, 0, VtBackend::Octree, &mut scene) },
+        unsafe { vt_scene_vox(null(), 4, 0, VT_BACKEND_OCTREE, &mut scene) },
         "null",
     );
     let cells = [1u8; 8];
     let voxels = |nx, out| unsafe {
-        vt_scene_voxels(cells.as_ptr(), nx, 2, 2, null(), VtBackend::Dense, out)
+        vt_scene_voxels(cells.as_ptr(), nx, 2, 2, null(), VT_BACKEND_DENSE, out)
     };
     refused(voxels(0, &mut scene), "0x2x2");
     refused(voxels(2, null_mut()), "null");
-    let scene = terrain(8, 1, VtBackend::Octree);
+    let scene = terrain(8, 1, VT_BACKEND_OCTREE);
     let mut rgba = vec![0u8; (VIEW.width * VIEW.height * 4) as usize];
     let render = |view: &VtView, effects: *const VtEffects, len: usize, rgba: *mut u8| unsafe {
         vt_render(scene, view, effects, 1, rgba, len)
@@ -321,6 +355,23 @@ fn every_refusal_is_a_status_and_a_message() {
     );
     let status = unsafe { vt_render(null(), &VIEW, null(), 1, rgba.as_mut_ptr(), rgba.len()) };
     refused(status, "null");
+    let status = unsafe {
+        vt_render(
+            scene,
+            &VIEW,
+            null(),
+            VT_MAX_THREADS + 1,
+            rgba.as_mut_ptr(),
+            rgba.len(),
+        )
+    };
+    refused(status, "at most 256");
+    let mut other = null_mut();
+    refused(
+        unsafe { vt_scene_terrain(8, 1, 7, &mut other) },
+        "backend 7",
+    );
+    assert!(other.is_null());
     // The message is cut to the buffer, NUL-terminated, its length whole.
     let mut small = [0xffu8; 4];
     let len = unsafe { vt_last_error(small.as_mut_ptr().cast(), small.len()) };

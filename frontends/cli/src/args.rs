@@ -167,7 +167,7 @@ pub struct Args {
 
     /// Direction toward the sun X,Y,Z, or `none` for a scene without light
     /// [default: the terrain 0.45,1,-0.3; a --vox file its own sun, else
-    /// over the camera's left shoulder: 30 degrees to the side of the way
+    /// over the camera's right shoulder: 30 degrees to the side of the way
     /// back from what the camera looks at, 45 above the horizon].
     #[arg(long, value_parser = parse_sun, allow_hyphen_values = true)]
     pub sun: Option<Sun>,

@@ -33,7 +33,11 @@ pub(crate) fn ignored_effects(asked: &RenderOptions) -> Vec<String> {
     let mut notes = Vec::new();
     let runs = asked.effective();
     if asked.shadows && !runs.shadows && asked.sun.is_none() && !(asked.flat || asked.debug) {
-        notes.push("the scene has no light (--sun none): --shadows traces no shadow rays".into());
+        notes.push(
+            "the scene has no light (--sun none): its shadows (--shadows, or a model's \
+             standard or final quality) trace no rays"
+                .into(),
+        );
     }
     let view = if asked.flat { "--flat" } else { "--debug" };
     let mut ignored = Vec::new();

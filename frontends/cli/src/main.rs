@@ -119,11 +119,18 @@ fn every_frame(args: &Args, matches: &ArgMatches) -> Result<(), String> {
     if output::is_stdout(&args.out) {
         return Err("--frame all writes one file per frame: --out - cannot hold them".into());
     }
-    let file = Subject::load(args.vox.as_deref(), 0, args.seed, args.size)?;
-    let count = file.shown.model().map_or(1, |model| model.frames());
+    let count = Subject::load(args.vox.as_deref(), 0, args.seed, args.size)?
+        .shown
+        .model()
+        .map_or(1, |model| model.frames());
     let paths: Vec<PathBuf> = (0..count)
         .map(|k| frame_path(&args.out, k))
         .collect::<Result<_, _>>()?;
+    // Every file can be written before the first is: a later frame's
+    // folder or name fails now, not after earlier frames were written.
+    for path in &paths {
+        output::check(path)?;
+    }
     for (frame, path) in (0..count).zip(&paths) {
         render_one(args, matches, Some(frame), path)?;
     }

@@ -272,6 +272,12 @@ fn an_animation_shows_its_first_frame_and_frame_picks_another() {
         assert_eq!(image_data(&numbered), alone, "frame {k} of the sequence");
     }
     assert!(!dir.join("walk_03.png").exists());
+    // A later frame that cannot be written (a folder by its name) fails
+    // the run before the first frame is written.
+    std::fs::create_dir(dir.join("blocked_1.png")).unwrap();
+    let blocked = render("anim.vox", &["--frame", "all"], "blocked_#.png");
+    common::run::assert_refused(&blocked, &["blocked_1.png"]);
+    assert!(!dir.join("blocked_0.png").exists());
     let unnumbered = render("anim.vox", &["--frame", "all"], "walk.png");
     common::run::assert_refused(&unnumbered, &["needs a run of #"]);
     assert!(!dir.join("walk.png").exists());

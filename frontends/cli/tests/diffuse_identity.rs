@@ -59,6 +59,14 @@ fn scratch(name: &str) -> PathBuf {
 
 /// The RGBA pixels `binary` writes for `file` with `camera` and `look`.
 fn pixels(binary: &Path, file: &Path, camera: (&str, &str), look: &[&str], out: &Path) -> Vec<u8> {
+    // This build's flags for b8c9a6d's light and look (b8c9a6d itself
+    // has no --quality, and lit every model by that sun).
+    let then: &[&str] =
+        if std::env::var_os("VOXTRACE_BASE_BIN").as_deref() == Some(binary.as_os_str()) {
+            &[]
+        } else {
+            &["--sun", "0.45,1,-0.3", "--quality", "draft"]
+        };
     let result = Command::new(binary)
         .args([
             "--vox",
@@ -69,7 +77,7 @@ fn pixels(binary: &Path, file: &Path, camera: (&str, &str), look: &[&str], out: 
             camera.1,
         ])
         .args(["--width", "160", "--height", "90", "--threads", "2"])
-        .args(["--sun", "0.45,1,-0.3", "--quality", "draft"])
+        .args(then)
         .args(look)
         .args(["--out", out.to_str().unwrap()])
         .output()

@@ -82,7 +82,7 @@ fn lighting(effects: &Effects, model: Option<&VoxModel>) -> Lighting {
 }
 
 /// The sun of a model whose file has none, seen from `view`: over the
-/// viewer's left shoulder, 30 degrees to the side of the way back from
+/// viewer's right shoulder, 30 degrees to the side of the way back from
 /// what the camera looks at and 45 degrees above the horizon, so the
 /// faces the camera sees are the lit ones (a fixed sun left the front and
 /// one side of most models in shade). A camera looking straight up or
@@ -93,10 +93,11 @@ pub fn shoulder_sun(view: &CameraSettings) -> Vec3 {
     let Some(back) = Vec3::new(back.x, 0.0, back.z).try_normalize() else {
         return DEFAULT_SUN;
     };
-    // Left of a camera looking along -back, on the ground plane.
-    let left = Vec3::Y.cross(back);
+    // The camera's right (its image's), on the ground plane: it looks
+    // along -back, and right is forward x up.
+    let right = Vec3::Y.cross(back);
     let (side, above) = (30f32.to_radians(), 45f32.to_radians());
-    let level = back * side.cos() + left * side.sin();
+    let level = back * side.cos() + right * side.sin();
     level * above.cos() + Vec3::Y * above.sin()
 }
 
@@ -167,10 +168,11 @@ mod tests {
     /// From every side and height a camera looks at a model from, the
     /// sun is a unit vector 45 degrees above the horizon, from behind the
     /// camera (so every face the camera sees that faces it squarely is
-    /// lit) and 30 degrees to its left; looking straight down or up, the
+    /// lit) and 30 degrees toward its image's right, as the camera's own
+    /// rays tell right from left; looking straight down or up, the
     /// paper's sun.
     #[test]
-    fn the_sun_comes_over_the_cameras_left_shoulder() {
+    fn the_sun_comes_over_the_cameras_right_shoulder() {
         for yaw in (0..360).step_by(15) {
             for pitch in [-60.0f32, -10.0, 0.0, 20.0, 45.0, 80.0] {
                 let (yaw_r, pitch_r) = ((yaw as f32).to_radians(), pitch.to_radians());
@@ -189,8 +191,12 @@ mod tests {
                 let level = Vec3::new(sun.x, 0.0, sun.z).normalize();
                 let side = level.dot(back).clamp(-1.0, 1.0).acos().to_degrees();
                 assert!((side - 30.0).abs() < 0.01, "{context}: {side} degrees");
-                // Left of a camera looking along -back.
-                assert!(Vec3::Y.cross(back).dot(level) > 0.0, "{context}");
+                // The image's right, from the camera's rays through the
+                // middle row's last and first pixels.
+                let camera = voxtrace::Camera::new(view).unwrap();
+                let (w, h) = (view.width, view.height);
+                let right = camera.get_ray(w - 1, h / 2).dir() - camera.get_ray(0, h / 2).dir();
+                assert!(right.dot(level) > 0.0, "{context}");
             }
         }
         for down in [Vec3::Y, -Vec3::Y] {

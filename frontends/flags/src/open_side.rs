@@ -124,6 +124,7 @@ pub fn open_side<S: Scene + ?Sized>(scene: &S, flags: &CameraFlags, stage: &Stag
                 front_orbit
             }
         }
+        [(None, _), (Some(_), other_orbit)] => other_orbit,
         [(_, front_orbit), _] => front_orbit,
     }
 }

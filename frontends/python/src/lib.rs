@@ -12,7 +12,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 use voxtrace_capi::{
     vt_default_view, vt_last_error, vt_render, vt_scene_free, vt_scene_terrain, vt_scene_vox,
-    vt_scene_voxels, VtBackend, VtEffects, VtScene, VtStatus, VtView,
+    vt_scene_voxels, VtEffects, VtScene, VtStatus, VtView, VT_BACKEND_DENSE, VT_BACKEND_OCTREE,
 };
 
 /// The calling thread's last error as the Python exception its status
@@ -39,10 +39,10 @@ fn checked(status: VtStatus) -> PyResult<()> {
 }
 
 /// `"octree"` or `"dense"` as the C API's backend.
-fn backend_of(name: &str) -> PyResult<VtBackend> {
+fn backend_of(name: &str) -> PyResult<u32> {
     match name {
-        "octree" | "sparse" => Ok(VtBackend::Octree),
-        "dense" => Ok(VtBackend::Dense),
+        "octree" | "sparse" => Ok(VT_BACKEND_OCTREE),
+        "dense" => Ok(VT_BACKEND_DENSE),
         other => Err(PyValueError::new_err(format!(
             "backend {other:?} is not \"octree\" or \"dense\""
         ))),
@@ -192,12 +192,12 @@ impl Scene {
             fov,
         };
         let effects = VtEffects {
-            shadows,
+            shadows: u8::from(shadows),
             ao_rays,
             ao_distance,
             spp,
-            fog,
-            flat,
+            fog: u8::from(fog),
+            flat: u8::from(flat),
             quality,
         };
         let len = (width as usize)
