@@ -51,7 +51,8 @@ int main(int argc, char **argv) {
     const char *out = argc > 1 ? argv[1] : "terrain.ppm";
     VtScene *scene = NULL;
     if (vt_scene_terrain(100, 1, VT_BACKEND_OCTREE, &scene) != VT_STATUS_OK) return fail("terrain");
-    VtView view = {320, 180, {90.0f, 90.0f, 90.0f}, {0.0f, 0.0f, 0.0f}, 0.0f};
+    VtView view = {.width = 320, .height = 180, .aim = VT_AIM_POSITION,
+                   .position = {90.0f, 90.0f, 90.0f}, .lookat = {0.0f, 0.0f, 0.0f}};
     size_t len = (size_t)view.width * view.height * 4;
     unsigned char *rgba = malloc(len);
     if (rgba == NULL) return 1;

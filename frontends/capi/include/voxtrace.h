@@ -35,6 +35,15 @@
 // path-traced scene sampled to a lower noise (`--quality final`).
 #define VT_QUALITY_FINAL 3
 
+// [`VtView::aim`]: at `position`, looking at `lookat` (`--position`).
+#define VT_AIM_POSITION 0
+
+// [`VtView::aim`]: around the target at `orbit` (`--orbit`), framed.
+#define VT_AIM_ORBIT 1
+
+// [`VtView::aim`]: the named `view` (`--view`), framed.
+#define VT_AIM_VIEW 2
+
 // What a call did.
 typedef enum VtStatus {
   // Done.
@@ -70,6 +79,16 @@ typedef struct VtView {
   float lookat[3];
   // Vertical field of view in degrees (`0`: the CLI's 60).
   float fov;
+  // Where the camera stands: [`VT_AIM_POSITION`] (`position`),
+  // [`VT_AIM_ORBIT`] (`orbit`) or [`VT_AIM_VIEW`] (`view`). Zero, the
+  // position, keeps a view written before these fields existed valid.
+  uint32_t aim;
+  // `--orbit YAW,PITCH[,DISTANCE]` in degrees (distance 0: the one that
+  // frames the scene), for [`VT_AIM_ORBIT`].
+  float orbit[3];
+  // `--view` for [`VT_AIM_VIEW`]: 0 front, 1 back, 2 left, 3 right, 4
+  // top, 5 bottom, 6 iso.
+  uint32_t view;
 } VtView;
 
 // Effects as the CLI's flags give them; zeroes are the CLI's defaults.

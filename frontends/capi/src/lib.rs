@@ -94,7 +94,24 @@ pub struct VtView {
     pub lookat: [f32; 3],
     /// Vertical field of view in degrees (`0`: the CLI's 60).
     pub fov: f32,
+    /// Where the camera stands: [`VT_AIM_POSITION`] (`position`),
+    /// [`VT_AIM_ORBIT`] (`orbit`) or [`VT_AIM_VIEW`] (`view`). Zero, the
+    /// position, keeps a view written before these fields existed valid.
+    pub aim: u32,
+    /// `--orbit YAW,PITCH[,DISTANCE]` in degrees (distance 0: the one that
+    /// frames the scene), for [`VT_AIM_ORBIT`].
+    pub orbit: [f32; 3],
+    /// `--view` for [`VT_AIM_VIEW`]: 0 front, 1 back, 2 left, 3 right, 4
+    /// top, 5 bottom, 6 iso.
+    pub view: u32,
 }
+
+/// [`VtView::aim`]: at `position`, looking at `lookat` (`--position`).
+pub const VT_AIM_POSITION: u32 = 0;
+/// [`VtView::aim`]: around the target at `orbit` (`--orbit`), framed.
+pub const VT_AIM_ORBIT: u32 = 1;
+/// [`VtView::aim`]: the named `view` (`--view`), framed.
+pub const VT_AIM_VIEW: u32 = 2;
 
 /// Effects as the CLI's flags give them; zeroes are the CLI's defaults.
 /// The switches are bytes, any value but 0 meaning on.

@@ -3,15 +3,16 @@
 
 use voxtrace::glam::Vec3;
 use voxtrace::rayon::ThreadPoolBuilder;
-use voxtrace::{render, unpack, Camera, Framebuffer, Occlusion, Rect, Target};
+use voxtrace::{render, unpack, Camera, Framebuffer, Occlusion, Orbit, Rect, Target, ViewPreset};
 use voxtrace_flags::{
     default_lens, measured_view, render_options, resolve, Aim, CameraFlags, Effects, Quality,
     Sampling, Subject, Tracer,
 };
 
 use crate::{
-    guarded, invalid, refused, VtEffects, VtScene, VtStatus, VtView, VT_MAX_THREADS,
-    VT_QUALITY_DEFAULT, VT_QUALITY_DRAFT, VT_QUALITY_FINAL, VT_QUALITY_STANDARD,
+    guarded, invalid, refused, VtEffects, VtScene, VtStatus, VtView, VT_AIM_ORBIT, VT_AIM_POSITION,
+    VT_AIM_VIEW, VT_MAX_THREADS, VT_QUALITY_DEFAULT, VT_QUALITY_DRAFT, VT_QUALITY_FINAL,
+    VT_QUALITY_STANDARD,
 };
 
 /// The effect flags `effects` names (null: none), as the CLI reads its own.
@@ -163,15 +164,32 @@ pub unsafe extern "C" fn vt_render(
         } else {
             view.fov
         };
+        let aim = match view.aim {
+            VT_AIM_POSITION => Aim::Position(Vec3::from_array(view.position)),
+            VT_AIM_ORBIT => {
+                let [yaw, pitch, distance] = view.orbit;
+                let distance = (distance != 0.0).then_some(distance);
+                Aim::Orbit(Orbit {
+                    yaw,
+                    pitch,
+                    distance,
+                })
+            }
+            VT_AIM_VIEW => match ViewPreset::ALL.get(view.view as usize) {
+                Some(&preset) => Aim::Preset(preset),
+                None => return Err(invalid(format!("view {} is not 0 to 6", view.view))),
+            },
+            n => {
+                return Err(invalid(format!(
+                    "aim {n} is not 0 (position), 1 (orbit) or 2 (view)"
+                )))
+            }
+        };
         let lookat = Vec3::from_array(view.lookat);
         let flags = CameraFlags {
             fov,
             lookat: (!lookat.is_nan()).then_some(lookat),
-            ..CameraFlags::new(
-                view.width,
-                view.height,
-                Aim::Position(Vec3::from_array(view.position)),
-            )
+            ..CameraFlags::new(view.width, view.height, aim)
         };
         let settings = resolve(&flags, &scene.stage()).map_err(invalid)?;
         let camera = Camera::new(settings).map_err(refused)?;
@@ -243,6 +261,9 @@ pub unsafe extern "C" fn vt_default_view(
             position: settings.lookfrom.to_array(),
             lookat: settings.lookat.to_array(),
             fov: settings.vertical_fov,
+            aim: VT_AIM_POSITION,
+            orbit: [0.0; 3],
+            view: 0,
         };
         // SAFETY: checked non-null; the caller gives a writable pointer.
         unsafe { *out = view };

@@ -35,6 +35,9 @@ const VIEW: VtView = VtView {
     position: [30.0, 30.0, 30.0],
     lookat: [0.0, 0.0, 0.0],
     fov: 0.0,
+    aim: VT_AIM_POSITION,
+    orbit: [0.0; 3],
+    view: 0,
 };
 
 /// `scene` through `view` with `effects` on `threads` threads.
@@ -124,6 +127,9 @@ fn a_callers_voxels_render_as_the_core_renders_them() {
         position: [14.0, 11.0, 15.0],
         lookat: [4.0, 1.0, 3.0],
         fov: 40.0,
+        aim: VT_AIM_POSITION,
+        orbit: [0.0; 3],
+        view: 0,
     };
     let got = frame(scene, &view, None, 1);
     unsafe { vt_scene_free(scene) };
@@ -179,6 +185,9 @@ fn a_null_palette_is_gray_by_index() {
         position: [1.5, 1.5, 9.0],
         lookat: [1.5, 1.5, 1.5],
         fov: 10.0,
+        aim: VT_AIM_POSITION,
+        orbit: [0.0; 3],
+        view: 0,
     };
     let rgba = frame(scene, &view, None, 1);
     unsafe { vt_scene_free(scene) };
@@ -232,6 +241,9 @@ fn the_default_view_is_the_papers_camera_or_a_models_front() {
         position: [0.0; 3],
         lookat: [0.0; 3],
         fov: 0.0,
+        aim: VT_AIM_POSITION,
+        orbit: [0.0; 3],
+        view: 0,
     };
     assert_eq!(
         unsafe { vt_default_view(scene, 64, 36, &mut view) },
@@ -335,6 +347,20 @@ fn every_refusal_is_a_status_and_a_message() {
     assert_eq!(
         render(&same, null(), rgba.len(), rgba.as_mut_ptr()),
         VtStatus::InvalidArgument
+    );
+    let bad_aim = VtView { aim: 5, ..VIEW };
+    refused(
+        render(&bad_aim, null(), rgba.len(), rgba.as_mut_ptr()),
+        "aim 5",
+    );
+    let bad_view = VtView {
+        aim: VT_AIM_VIEW,
+        view: 9,
+        ..VIEW
+    };
+    refused(
+        render(&bad_view, null(), rgba.len(), rgba.as_mut_ptr()),
+        "view 9",
     );
     let bad_quality = VtEffects {
         quality: 9,

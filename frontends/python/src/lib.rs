@@ -165,24 +165,29 @@ impl Scene {
             position: [0.0; 3],
             lookat: [0.0; 3],
             fov: 0.0,
+            aim: 0,
+            orbit: [0.0; 3],
+            view: 0,
         };
         // SAFETY: a live scene and a writable view.
         checked(unsafe { vt_default_view(self.raw, width, height, &mut view) })?;
         Ok((view.position, view.lookat, view.fov))
     }
 
-    /// The frame through the camera `(width, height, position, lookat,
-    /// fov)` with `effects` `(shadows, ao_rays, ao_distance, spp, fog,
-    /// flat, quality)` on `threads` threads (0: one per core), as RGBA
-    /// bytes, rendered without the GIL.
+    /// The frame through the camera `(width, height, aim, position,
+    /// lookat, fov, orbit, view)` (`VtView`'s fields) with `effects`
+    /// `(shadows, ao_rays, ao_distance, spp, fog, flat, quality)` on
+    /// `threads` threads (0: one per core), as RGBA bytes, rendered
+    /// without the GIL.
+    #[allow(clippy::type_complexity)] // VtView's fields, in order
     fn render<'py>(
         &self,
         py: Python<'py>,
-        camera: (u32, u32, [f32; 3], [f32; 3], f32),
+        camera: (u32, u32, u32, [f32; 3], [f32; 3], f32, [f32; 3], u32),
         effects: (bool, u16, f32, u16, bool, bool, u32),
         threads: u32,
     ) -> PyResult<Bound<'py, PyBytes>> {
-        let (width, height, position, lookat, fov) = camera;
+        let (width, height, aim, position, lookat, fov, orbit, view) = camera;
         let (shadows, ao_rays, ao_distance, spp, fog, flat, quality) = effects;
         let view = VtView {
             width,
@@ -190,6 +195,9 @@ impl Scene {
             position,
             lookat,
             fov,
+            aim,
+            orbit,
+            view,
         };
         let effects = VtEffects {
             shadows: u8::from(shadows),

@@ -57,6 +57,20 @@ def test_a_vox_file_is_the_clis_bytes(tmp_path):
 
 
 @needs_cli
+@pytest.mark.parametrize("keywords, flags", [
+    ({"orbit": (200, 20)}, ["--orbit", "200,20"]),
+    ({"orbit": (30, 45, 90), "fov": 35}, ["--orbit", "30,45,90", "--fov", "35"]),
+    ({"view": "iso"}, ["--view", "iso"]),
+    ({"view": "top", "lookat": (0, 40, 0)}, ["--view", "top", "--lookat", "0,40,0"]),
+])
+def test_orbits_and_views_are_the_clis(tmp_path, keywords, flags):
+    model = ROOT / "docs" / "terrain.vox"
+    image = voxtrace.render_vox(model, width=160, height=90, quality="draft", **keywords)
+    args = ["--vox", str(model), "--quality", "draft", *flags]
+    assert image[..., :3].tobytes() == cli_rgb(tmp_path, args, 160, 90)
+
+
+@needs_cli
 @pytest.mark.parametrize("name", ["chr_riotcop.vox", "O1-COLORED.vox"])
 def test_a_shared_model_is_the_clis_bytes(tmp_path, name):
     model = ROOT.parent / "shared" / "scenes" / "vox" / name
@@ -119,6 +133,10 @@ def test_a_256_cubed_random_volume_renders():
     (lambda: voxtrace.render_terrain(seed=1, size=20, backend="kd"), ValueError, "kd"),
     (lambda: voxtrace.render_terrain(seed=1, size=20, fov=30), ValueError, "position"),
     (lambda: voxtrace.render_vox("/nonexistent/model.vox"), FileNotFoundError, "model.vox"),
+    (lambda: voxtrace.render_terrain(seed=1, size=20, view="side"), ValueError, "side"),
+    (lambda: voxtrace.render_terrain(seed=1, size=20, view="iso", orbit=(0, 30)), ValueError,
+     "one of"),
+    (lambda: voxtrace.render_terrain(seed=1, size=20, orbit=(0,)), ValueError, "orbit"),
 ])
 def test_bad_input_raises_the_right_exception(call, error, words):
     with pytest.raises(error) as raised:

@@ -28,6 +28,7 @@ from . import _voxtrace
 __all__ = ["Image", "render", "render_terrain", "render_vox"]
 
 _QUALITIES = {None: 0, "draft": 1, "preview": 1, "standard": 2, "final": 3}
+_VIEWS = ["front", "back", "left", "right", "top", "bottom", "iso"]
 
 
 class Image(np.ndarray):
@@ -93,6 +94,8 @@ def _render(
     position,
     lookat,
     fov,
+    orbit,
+    view,
     shadows: bool,
     ao: int,
     ao_distance,
@@ -104,17 +107,31 @@ def _render(
 ) -> Image:
     if quality not in _QUALITIES:
         raise ValueError(f"quality {quality!r} is not 'draft', 'standard' or 'final'")
+    if view is not None and view not in _VIEWS:
+        raise ValueError(f"view {view!r} is not one of {', '.join(_VIEWS)}")
+    if sum(x is not None for x in (position, orbit, view)) > 1:
+        raise ValueError("give one of position, orbit and view")
     position, lookat = _vector("position", position), _vector("lookat", lookat)
-    if position is None:
+    turn = [0.0, 0.0, 0.0]
+    if orbit is not None:
+        turn = [float(v) for v in orbit]
+        if len(turn) not in (2, 3):
+            raise ValueError(f"orbit is (yaw, pitch) or (yaw, pitch, distance), not {len(turn)} numbers")
+        turn += [0.0] * (3 - len(turn))
+    aim = 1 if orbit is not None else 2 if view is not None else 0
+    if aim == 0 and position is None:
         if lookat is not None or fov is not None:
-            raise ValueError("lookat and fov go with a position; give none for the default view")
+            raise ValueError("lookat and fov go with a position, orbit or view; give none for the default view")
         position, lookat, fov = scene.default_view(width, height)
     camera = (
         width,
         height,
-        position,
+        aim,
+        position if position is not None else [0.0] * 3,
         lookat if lookat is not None else [float("nan")] * 3,
         float(fov) if fov is not None else 0.0,
+        turn,
+        _VIEWS.index(view) if view is not None else 0,
     )
     effects = (
         bool(shadows),
@@ -137,6 +154,8 @@ def render_terrain(
     position: Optional[Sequence[float]] = None,
     lookat: Optional[Sequence[float]] = None,
     fov: Optional[float] = None,
+    orbit: Optional[Sequence[float]] = None,
+    view: Optional[str] = None,
     shadows: bool = False,
     ao: int = 0,
     ao_distance: Optional[float] = None,
@@ -148,11 +167,14 @@ def render_terrain(
     backend: str = "octree",
 ) -> Image:
     """The seeded terrain over ``[-size, size)^3`` (``--seed``, ``--size``):
-    without ``position``, from the paper's camera (the CLI's default view).
+    from ``position`` (``--position``), ``orbit`` ``(yaw, pitch[,
+    distance])`` (``--orbit``) or ``view`` (``--view``: front, back, left,
+    right, top, bottom, iso); with none, from the paper's camera (the
+    CLI's default view).
     ``threads`` 0 uses every core, 1 this thread; the bytes are the same."""
     scene = _voxtrace.terrain(size, seed, backend)
     return _render(scene, width=width, height=height, position=position, lookat=lookat,
-                   fov=fov, shadows=shadows, ao=ao, ao_distance=ao_distance, spp=spp,
+                   fov=fov, orbit=orbit, view=view, shadows=shadows, ao=ao, ao_distance=ao_distance, spp=spp,
                    fog=fog, flat=flat, quality=quality, threads=threads)
 
 
@@ -165,6 +187,8 @@ def render_vox(
     position: Optional[Sequence[float]] = None,
     lookat: Optional[Sequence[float]] = None,
     fov: Optional[float] = None,
+    orbit: Optional[Sequence[float]] = None,
+    view: Optional[str] = None,
     shadows: bool = False,
     ao: int = 0,
     ao_distance: Optional[float] = None,
@@ -177,12 +201,13 @@ def render_vox(
 ) -> Image:
     """Animation frame ``frame`` of the ``.vox`` file at ``path`` (``--vox``,
     ``--frame``), with its materials, sun and the CLI's default look
-    (``quality`` standard for a face-shaded model); without ``position``,
-    from the CLI's default view (the model's front half)."""
+    (``quality`` standard for a face-shaded model); the camera as
+    ``render_terrain``'s, by default the CLI's measured view (the model's
+    front half)."""
     data = Path(path).read_bytes()
     scene = _voxtrace.vox(data, frame, backend)
     return _render(scene, width=width, height=height, position=position, lookat=lookat,
-                   fov=fov, shadows=shadows, ao=ao, ao_distance=ao_distance, spp=spp,
+                   fov=fov, orbit=orbit, view=view, shadows=shadows, ao=ao, ao_distance=ao_distance, spp=spp,
                    fog=fog, flat=flat, quality=quality, threads=threads)
 
 
@@ -195,6 +220,8 @@ def render(
     position: Optional[Sequence[float]] = None,
     lookat: Optional[Sequence[float]] = None,
     fov: Optional[float] = None,
+    orbit: Optional[Sequence[float]] = None,
+    view: Optional[str] = None,
     shadows: bool = False,
     ao: int = 0,
     ao_distance: Optional[float] = None,
@@ -209,8 +236,8 @@ def render(
     empty, voxel ``(x, y, z)`` filling the cube from ``(x, y, z)`` to
     ``(x+1, y+1, z+1)``. ``palette`` is ``(256, 3)`` or ``(256, 4)``
     ``uint8`` (row 0 unused, alpha ignored); ``None`` gives index ``i`` the
-    gray ``(i, i, i)``. Without ``position``, the camera looks at the volume
-    from its front half as the CLI looks at a model."""
+    gray ``(i, i, i)``. The camera as ``render_terrain``'s; by default it
+    looks at the volume from its front half as the CLI looks at a model."""
     array = np.asarray(volume)
     if array.dtype != np.uint8:
         raise TypeError(f"a volume is uint8 palette indices, not {array.dtype}")
@@ -228,5 +255,5 @@ def render(
         colors = np.ascontiguousarray(table[1:, :3]).tobytes()
     scene = _voxtrace.voxels(indices, nx, ny, nz, colors, backend)
     return _render(scene, width=width, height=height, position=position, lookat=lookat,
-                   fov=fov, shadows=shadows, ao=ao, ao_distance=ao_distance, spp=spp,
+                   fov=fov, orbit=orbit, view=view, shadows=shadows, ao=ao, ao_distance=ao_distance, spp=spp,
                    fog=fog, flat=flat, quality=quality, threads=threads)
