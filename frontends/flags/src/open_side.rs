@@ -177,17 +177,7 @@ mod tests {
     /// `+z` sides, open toward `+x`, and three pieces of furniture (3, 4,
     /// 5) in its middle, which only a view from the open side sees.
     fn room() -> (impl Scene, IAabb) {
-        let palette = Palette::new(&[U8Vec3::splat(200); 5]);
-        let source = FnSource::new(palette, |p: IVec3| match (p.x, p.y, p.z) {
-            (_, 0, _) => 1,
-            (0, _, _) | (_, _, 0 | 15) => 2,
-            (7..=8, 1, 5..=6) => 3,
-            (7..=8, 1, 8..=9) => 4,
-            (7..=8, 1, 11..=12) => 5,
-            _ => 0,
-        });
-        let bounds = IAabb::new(IVec3::ZERO, IVec3::new(16, 8, 16));
-        (OctreeScene::build(&source, bounds).unwrap(), bounds)
+        room_open_toward(90)
     }
 
     #[test]
@@ -219,12 +209,13 @@ mod tests {
         assert_eq!(open_side(&scene, &flags, &stage), orbit);
     }
 
-    /// A 16x8x16 room, its floor (1), walls (2) and furniture (3, 4, 5)
-    /// as [`room`]'s, open toward the side at yaw `open` (0: `+z`, 90:
-    /// `+x`, 180: `-z`, 270: `-x`).
+    /// A 16x8x16 room with a floor (1), walls (2) and three pieces of
+    /// furniture (3, 4, 5) in its middle, open toward the side at yaw
+    /// `open` (0: `+z`, 90: `+x`, 180: `-z`, 270: `-x`; at 90 its walls
+    /// stand on `-x`, `-z` and `+z`).
     fn room_open_toward(open: u32) -> (impl Scene, IAabb) {
         let palette = Palette::new(&[U8Vec3::splat(200); 5]);
-        // The room of `room` turned so that its open `+x` side faces `open`.
+        // The room open toward `+x`, turned so that side faces `open`.
         let source = FnSource::new(palette, move |p: IVec3| {
             let (x, z) = match open {
                 90 => (p.x, p.z),
